@@ -1,0 +1,159 @@
+/* platform/stdin_input.c: the stdin command language of `cumulo run` (sun, turn, toggle, quit...) and its line reader. */
+#include "stdin_input.h"
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define CMDS "sun EL AZ, elevation EL, azimuth AZ, turn N, toggle, status, quit"
+
+/* Splits into at most 4 words; returns the count, or 5 for too many. */
+static int split(char *s, char *w[4])
+{
+    int n = 0;
+    for (char *p = strtok(s, " \t\r"); p; p = strtok(NULL, " \t\r")) {
+        if (n == 4)
+            return 5;
+        w[n++] = p;
+    }
+    return n;
+}
+
+static int number(const char *w, double lo, double hi, double *out)
+{
+    char *end;
+    double x = strtod(w, &end);
+    if (end == w || *end || !isfinite(x) || x < lo || x > hi)
+        return 1;
+    *out = x;
+    return 0;
+}
+
+int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen)
+{
+    char tmp[CU_STDIN_LINE_MAX];
+    char *w[4];
+    cu_action z = {0};
+    *out = z;
+    snprintf(tmp, sizeof tmp, "%s", line);
+    char *hash = strchr(tmp, '#');
+    if (hash)
+        *hash = '\0';
+    int n = split(tmp, w);
+    if (n == 0)
+        return 0;
+    const char *c = w[0];
+    double x, y;
+    if (!strcmp(c, "sun")) {
+        if (n != 3) {
+            snprintf(err, errlen, "stdin: 'sun' needs elevation and azimuth in degrees, e.g. 'sun 35 120'");
+            return 1;
+        }
+        if (number(w[1], -90, 90, &x)) {
+            snprintf(err, errlen, "stdin: 'sun': elevation '%s' is not a number in -90..90", w[1]);
+            return 1;
+        }
+        if (number(w[2], -1e6, 1e6, &y)) {
+            snprintf(err, errlen, "stdin: 'sun': azimuth '%s' is not a number of degrees", w[2]);
+            return 1;
+        }
+        out->kind = CU_ACT_SET_SUN;
+        out->el = x;
+        out->az = y;
+        return 0;
+    }
+    if (!strcmp(c, "elevation") || !strcmp(c, "el") || !strcmp(c, "azimuth") || !strcmp(c, "az")) {
+        int el = c[1] == 'l';
+        if (n != 2 || number(w[1], el ? -90 : -1e6, el ? 90 : 1e6, &x)) {
+            snprintf(err, errlen, "stdin: '%s' needs one number of degrees%s", c, el ? " in -90..90" : "");
+            return 1;
+        }
+        out->kind = el ? CU_ACT_SET_EL : CU_ACT_SET_AZ;
+        out->el = el ? x : 0;
+        out->az = el ? 0 : x;
+        return 0;
+    }
+    if (!strcmp(c, "turn")) {
+        if (n != 2 || number(w[1], -10000, 10000, &x) || x != floor(x)) {
+            snprintf(err, errlen, "stdin: 'turn' needs a whole number of detents in -10000..10000");
+            return 1;
+        }
+        out->kind = CU_ACT_TURN;
+        out->detents = (int)x;
+        return 0;
+    }
+    struct { const char *name; cu_action_kind kind; } simple[] = {
+        { "toggle", CU_ACT_TOGGLE }, { "button", CU_ACT_TOGGLE }, { "status", CU_ACT_STATUS },
+        { "quit", CU_ACT_QUIT }, { "exit", CU_ACT_QUIT },
+    };
+    for (size_t i = 0; i < sizeof simple / sizeof simple[0]; i++) {
+        if (!strcmp(c, simple[i].name)) {
+            if (n != 1) {
+                snprintf(err, errlen, "stdin: '%s' takes no arguments", c);
+                return 1;
+            }
+            out->kind = simple[i].kind;
+            return 0;
+        }
+    }
+    snprintf(err, errlen, "stdin: unknown command '%.40s' (commands: " CMDS ")", c);
+    return 1;
+}
+
+void cu_stdin_init(cu_stdin *s, int fd)
+{
+    s->fd = fd;
+    s->len = 0;
+    s->overlong = 0;
+    s->eof = 0;
+}
+
+void cu_stdin_feed(cu_stdin *s, const char *data, size_t n, void (*fn)(void *user, const char *line), void *user)
+{
+    for (size_t i = 0; i < n; i++) {
+        char ch = data[i];
+        if (ch == '\n') {
+            if (!s->overlong) {
+                s->buf[s->len] = '\0';
+                fn(user, s->buf);
+            }
+            s->len = 0;
+            s->overlong = 0;
+        } else if (s->overlong) {
+            continue;
+        } else if (s->len + 1 >= sizeof s->buf) {
+            /* A line this long is not a command: drop it whole rather than run its tail as one. */
+            s->overlong = 1;
+            s->len = 0;
+            fn(user, CU_STDIN_OVERLONG);
+        } else {
+            s->buf[s->len++] = ch;
+        }
+    }
+}
+
+int cu_stdin_read(cu_stdin *s, void (*fn)(void *user, const char *line), void *user)
+{
+    char data[512];
+    for (;;) {
+        ssize_t r = read(s->fd, data, sizeof data);
+        if (r > 0) {
+            cu_stdin_feed(s, data, (size_t)r, fn, user);
+            if ((size_t)r < sizeof data)
+                return 0;
+            continue;
+        }
+        if (r < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
+            return 0;
+        /* End of file: a last line without a newline still counts. */
+        if (s->len && !s->overlong) {
+            s->buf[s->len] = '\0';
+            s->len = 0;
+            fn(user, s->buf);
+        }
+        s->eof = 1;
+        return 1;
+    }
+}
