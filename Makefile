@@ -26,8 +26,8 @@ CHECK_TESTS :=
 all:
 
 include mk/deps.mk
-include src/engine.mk
 include platform/platform.mk
+include src/engine.mk
 include tools/mie/mie.mk
 include tools/slab/slab.mk
 include tests/tests.mk

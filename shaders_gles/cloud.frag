@@ -1,0 +1,242 @@
+#version 300 es
+// shaders_gles/cloud.frag: opacity and single scattering of a cloud of noisy ellipsoids in one march (Kol 3.3.2,
+// eqs. 3.20-3.22), over the ray's in-cloud intervals in front-to-back order, output premultiplied over the sky.
+//
+// Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
+// NOISE_OCTAVES, PROFILE_KOL, MS_OCTAVES (1 = single scattering only), FULLSCREEN (camera inside a hull).
+//
+// Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
+// depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
+// but they are a few multiplies per sample; the cost is not worth a second precision domain.
+precision highp float;
+precision highp int;
+precision highp sampler3D;
+precision highp sampler2D;
+
+#if FULLSCREEN
+in vec2 v_ndc;
+uniform mat4 u_inv_viewproj;   // clip -> cloud-local
+#else
+in vec3 v_pos;
+#endif
+uniform vec3 u_cam;            // camera, cloud-local
+uniform vec4 u_ell_c[NUM_ELL]; // centres, cloud-local
+uniform vec4 u_ell_ir[NUM_ELL];// 1 / radii
+uniform float u_ke;            // core extinction, m^-1
+uniform float u_h;             // boundary thickness, m
+uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
+uniform float u_noise_freq;    // texture tiles per metre
+uniform vec3 u_noise_offset;
+uniform float u_noise_mean[5]; // mean of each mip level, stands in for octaves that are switched off
+uniform sampler3D u_noise;
+uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1)
+uniform int u_phase_n;
+uniform vec3 u_sun_dir;        // toward the sun
+uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
+uniform sampler2D u_sun_depth; // sun-space front depth / 4R
+uniform vec3 u_sun_right, u_sun_up;
+uniform float u_sun_R;
+uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
+uniform float u_ms_g;          // anisotropy of the octave phase functions
+out vec4 o_color;
+
+const float PI = 3.14159265358979;
+
+float sample_level(vec3 t, int level)
+{
+    return textureLod(u_noise, t, float(level)).r;
+}
+
+// Kol eq. 3.74: five LODs at p and at 8p, each sum minus 0.75, clamped to [0,1], mapped to [-1,1].
+float fractal_noise(vec3 p)
+{
+    vec3 t = p * u_noise_freq + u_noise_offset;
+    float a = -1.5, b;
+    const float w[5] = float[5](0.015, 0.035, 0.1, 0.35, 1.5);
+    for (int L = 0; L < 5; L++) {
+        if (L < 5 - NOISE_OCTAVES) {
+            a += 2.0 * w[L] * u_noise_mean[L];
+        } else {
+            a += w[L] * (sample_level(t, L) + sample_level(8.0 * t, L));
+        }
+    }
+    b = clamp(a, 0.0, 1.0);
+    return b * 2.0 - 1.0;
+}
+
+// Kol's radial signed distance (positive inside): d = |q| (1/s - 1) with s = |q / r|. Finite at the centre.
+float radial_distance(vec3 p, int i)
+{
+    vec3 q = p - u_ell_c[i].xyz;
+    float len = length(q);
+    float s = length(q * u_ell_ir[i].xyz);
+    if (s < 1e-6) {
+        vec3 r = 1.0 / u_ell_ir[i].xyz;
+        return min(r.x, min(r.y, r.z));
+    }
+    return len / s - len;
+}
+
+float sigmoid(float x)
+{
+    x = clamp(x, 0.0, 1.0);
+    return x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
+}
+
+// Chords of the ray through each ellipsoid it hits, sorted by entry.
+int n_hits;
+int hit_idx[NUM_ELL];
+float hit_t0[NUM_ELL], hit_t1[NUM_ELL];
+
+// Extinction at p = ray(t): the distance to the union is the max over ellipsoids, and only ellipsoids whose chord
+// contains t can be non-negative there, so the loop runs over the hit list, skipping chords that end before t.
+float extinction(vec3 p, float t)
+{
+    float d = -1e30;
+    for (int k = 0; k < n_hits; k++) {
+        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3)
+            d = max(d, radial_distance(p, hit_idx[k]));
+    }
+    if (d <= 0.0)
+        return 0.0;
+    if (d >= u_h)
+        return u_ke;
+    float u = d / u_h;
+#if NOISE
+    float n = fractal_noise(p);
+#else
+    float n = 0.0;
+#endif
+#if PROFILE_KOL
+    return u_ke * sigmoid(u + n);                       // eq. 3.1 as printed
+#else
+    return u_ke * sigmoid(u + 4.0 * u * (1.0 - u) * n);  // noise tapered to 0 at both borders: continuous density
+#endif
+}
+
+// Kol's sun transmittance estimate: distance l from p to the front surface seen from the sun, times k_e(p).
+float sun_optical_depth(vec3 p, float ke)
+{
+    vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
+    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+        return 0.0;
+    float front = textureLod(u_sun_depth, uv, 0.0).r;
+    if (front >= 1.0)
+        return 0.0;
+    float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
+    float l = max(z - front * 4.0 * u_sun_R, 0.0);
+    return l * ke;
+}
+
+vec3 phase_table(float cos_theta)
+{
+    float x = acos(clamp(cos_theta, -1.0, 1.0)) / PI * float(u_phase_n - 1);
+    int i = min(int(x), u_phase_n - 2);
+    float f = x - float(i);
+    return mix(texelFetch(u_phase, ivec2(i, 0), 0).rgb, texelFetch(u_phase, ivec2(i + 1, 0), 0).rgb, f);
+}
+
+float hg(float g, float mu)
+{
+    float d = 1.0 + g * g - 2.0 * g * mu;
+    return (1.0 - g * g) / (4.0 * PI * d * sqrt(d));
+}
+
+void main()
+{
+#if FULLSCREEN
+    vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
+    vec3 dir = normalize(w.xyz / w.w - u_cam);
+#else
+    vec3 dir = normalize(v_pos - u_cam);
+#endif
+    // Intersect every ellipsoid (analytic, cancellation-free quadratic); keep the chords in front of the camera.
+    n_hits = 0;
+    for (int i = 0; i < NUM_ELL; i++) {
+        vec3 ir = u_ell_ir[i].xyz;
+        vec3 q = (u_cam - u_ell_c[i].xyz) * ir, ds = dir * ir;
+        float A = dot(ds, ds), B = 2.0 * dot(q, ds), C = dot(q, q) - 1.0;
+        float disc = B * B - 4.0 * A * C;
+        if (disc <= 0.0)
+            continue;
+        float s = sqrt(disc);
+        float qq = -0.5 * (B + (B >= 0.0 ? s : -s));
+        float ta = qq / A, tb = C / qq;
+        float t0 = max(min(ta, tb), 0.0), t1 = max(ta, tb); // camera inside: start at the camera
+        if (t1 <= t0)
+            continue;
+        // insertion by entry distance
+        int k = n_hits;
+        while (k > 0 && hit_t0[k - 1] > t0) {
+            hit_t0[k] = hit_t0[k - 1]; hit_t1[k] = hit_t1[k - 1]; hit_idx[k] = hit_idx[k - 1];
+            k--;
+        }
+        hit_t0[k] = t0; hit_t1[k] = t1; hit_idx[k] = i;
+        n_hits++;
+    }
+    if (n_hits == 0)
+        discard;
+
+    // Per-pixel constants: the scattering angle is the same along the ray (parallel sunlight).
+    float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
+    vec3 ph0 = phase_table(mu);
+#if MS_OCTAVES > 1
+    float ph_oct[MS_OCTAVES];
+    float bo = 1.0, go = u_ms_g;
+    for (int o = 1; o < MS_OCTAVES; o++) {
+        bo *= u_ms_abc.y; go *= u_ms_abc.z;
+        ph_oct[o] = bo * hg(go, mu);
+    }
+#endif
+
+    float tau = 0.0;      // optical depth from the eye to the current sample
+    vec3 L = vec3(0.0);   // scattered radiance / sun irradiance, attenuated to the eye
+    int k = 0, intervals = 0;
+    while (k < n_hits && intervals < MAX_INTERVALS) {
+        // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
+        float a = hit_t0[k], b = hit_t1[k];
+        int merged = 1;
+        k++;
+        while (k < n_hits && hit_t0[k] <= b) {
+            b = max(b, hit_t1[k]);
+            merged++;
+            k++;
+        }
+        intervals++;
+        // Segments in geometric progression, shortest at the entry (DESIGN: Kol's eq. 3.23 is garbled).
+        int nseg = SEGMENTS * merged;
+        float len = b - a;
+        float r = u_seg_ratio;
+        float rn = r > 1.0001 ? pow(r, float(nseg)) - 1.0 : 0.0;
+        float seg = r > 1.0001 ? len * (r - 1.0) / rn : len / float(nseg);
+        float t = a;
+        vec3 p = u_cam + dir * t;
+        float ke_prev = extinction(p, t);
+        float ts = sun_optical_depth(p, ke_prev);
+        vec3 F_prev = ke_prev * ph0 * exp(-ts);
+#if MS_OCTAVES > 1
+        { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F_prev += vec3(ke_prev * ph_oct[o] * exp(-ao * ts)); } }
+#endif
+        F_prev *= exp(-tau);
+        for (int i = 0; i < nseg; i++) {
+            float x = (i == nseg - 1) ? (b - t) : seg;
+            t += x;
+            p = u_cam + dir * t;
+            float ke = extinction(p, t);
+            float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
+            float ts_i = sun_optical_depth(p, ke);
+            vec3 F = ke * ph0 * exp(-ts_i);               // eq. 3.21
+#if MS_OCTAVES > 1
+            { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F += vec3(ke * ph_oct[o] * exp(-ao * ts_i)); } }
+#endif
+            F *= exp(-(tau + dtau));
+            L += x * 0.5 * (F_prev + F);                  // eq. 3.20
+            tau += dtau;
+            ke_prev = ke;
+            F_prev = F;
+            seg *= r;
+        }
+    }
+    float alpha = 1.0 - exp(-tau);
+    o_color = vec4(u_sun_irr * L, alpha);
+}

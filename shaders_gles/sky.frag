@@ -1,0 +1,59 @@
+#version 300 es
+// shaders_gles/sky.frag: background radiance: Preetham et al. 1999 analytic sky (Perez distribution of Y, x, y) or a
+// constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units).
+precision highp float;
+in vec2 v_ndc;
+uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
+uniform vec3 u_sun_dir;
+uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
+uniform float u_sun_disk_max;  // radiance cap of the disk (fp16 targets overflow at 65504)
+uniform vec3 u_ground;         // ground radiance
+#if SKY_CONSTANT
+uniform vec3 u_sky_color;
+#else
+uniform float u_perez[15];     // A..E for Y, x, y
+uniform vec3 u_zenith;         // Y (kcd/m^2), x, y at the zenith
+uniform vec3 u_norm;           // F(0, theta_s) for Y, x, y
+#endif
+out vec4 o_color;
+
+#if !SKY_CONSTANT
+float perez(int k, float cos_theta, float gamma, float cos_gamma)
+{
+    float A = u_perez[k * 5], B = u_perez[k * 5 + 1], C = u_perez[k * 5 + 2];
+    float D = u_perez[k * 5 + 3], E = u_perez[k * 5 + 4];
+    // cos_theta is clamped away from 0: the Perez term exp(B / cos theta) is singular at the horizon.
+    return (1.0 + A * exp(B / max(cos_theta, 0.01))) * (1.0 + C * exp(D * gamma) + E * cos_gamma * cos_gamma);
+}
+vec3 xyY_to_rgb(float x, float y, float Y)
+{
+    float X = Y * x / max(y, 1e-4), Z = Y * (1.0 - x - y) / max(y, 1e-4);
+    return vec3(3.2406 * X - 1.5372 * Y - 0.4986 * Z, -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
+                0.0557 * X - 0.2040 * Y + 1.0570 * Z);
+}
+#endif
+
+void main()
+{
+    vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
+    vec3 dir = normalize(w.xyz / w.w);
+    vec3 L;
+    if (dir.y < 0.0) {
+        L = u_ground;
+    } else {
+#if SKY_CONSTANT
+        L = u_sky_color;
+#else
+        float cos_gamma = clamp(dot(dir, u_sun_dir), -1.0, 1.0);
+        float gamma = acos(cos_gamma);
+        float Y = u_zenith.x * perez(0, dir.y, gamma, cos_gamma) / u_norm.x;
+        float x = u_zenith.y * perez(1, dir.y, gamma, cos_gamma) / u_norm.y;
+        float y = u_zenith.z * perez(2, dir.y, gamma, cos_gamma) / u_norm.z;
+        L = max(xyY_to_rgb(x, y, Y), vec3(0.0));
+#endif
+        // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
+        if (dot(dir, u_sun_dir) > 0.99998917)
+            L += min(u_sun_irr / 6.8e-5, vec3(u_sun_disk_max));
+    }
+    o_color = vec4(L, 1.0);
+}

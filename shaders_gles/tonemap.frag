@@ -1,0 +1,22 @@
+#version 300 es
+// shaders_gles/tonemap.frag: final pass from the linear HDR target: exposure, ACES filmic curve (Narkowicz fit) and
+// the sRGB transfer function; or a plain copy of linear radiance when LINEAR_OUTPUT is set (PFM, tests).
+precision highp float;
+uniform highp sampler2D u_hdr;
+uniform float u_exposure;
+out vec4 o_color;
+vec3 srgb(vec3 c)
+{
+    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+void main()
+{
+    vec4 c = texelFetch(u_hdr, ivec2(gl_FragCoord.xy), 0);
+#if LINEAR_OUTPUT
+    o_color = c;
+#else
+    vec3 x = max(c.rgb * u_exposure, vec3(0.0));
+    vec3 t = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+    o_color = vec4(srgb(t), 1.0);
+#endif
+}

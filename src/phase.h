@@ -1,0 +1,18 @@
+/* src/phase.h: phase functions as RGB tables over the scattering angle for the shader (one texture row each):
+ * Henyey-Greenstein, Cornette-Shanks, and (from data/) tabulated Mie. */
+#ifndef CU_PHASE_H
+#define CU_PHASE_H
+#include "scene.h"
+
+#define CU_PHASE_N 2048 /* theta_i = i * pi / (N - 1): 0.088 deg steps */
+
+typedef struct cu_phase_table {
+    int n;
+    float *rgb;     /* n * 3 values, sr^-1, normalised: integral over the sphere = 1 */
+} cu_phase_table;
+
+double cu_phase_hg(double g, double cos_theta);
+double cu_phase_cornette_shanks(double g, double cos_theta);
+int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_dir, cu_error *err);
+void cu_phase_table_free(cu_phase_table *t);
+#endif

@@ -1,0 +1,67 @@
+/* src/scene.h: the scene description (camera, sun, cloud, ellipsoids, quality knobs) and its defaults. */
+#ifndef CU_SCENE_H
+#define CU_SCENE_H
+#include "cumulo.h"
+
+#define CU_MAX_ELLIPSOIDS 64
+#define CU_MAX_INTERVALS 8
+
+typedef struct cu_ellipsoid {
+    double center[3]; /* m, world */
+    double radii[3];  /* m, along world x, y, z */
+} cu_ellipsoid;
+
+typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MIE } cu_phase_model;
+typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
+typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES } cu_ms_mode;
+typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
+typedef enum cu_shadow_method { CU_SHADOW_FRONT } cu_shadow_method;
+
+struct cu_scene {
+    char name[256];
+    /* [output] */
+    int width, height;
+    double exposure;          /* multiplies radiance (kcd/m^2) before tone mapping */
+    /* [camera] */
+    double cam_pos[3], cam_look[3];
+    double cam_fov;           /* degrees, vertical */
+    /* [sun] */
+    double sun_elevation, sun_azimuth; /* degrees */
+    double turbidity;         /* Preetham atmospheric turbidity */
+    int has_sun_irradiance;
+    double sun_irradiance[3]; /* klx-like units per channel, on a plane perpendicular to the rays */
+    /* [sky] */
+    cu_sky_model sky_model;
+    double sky_color[3];      /* constant sky: radiance, linear RGB */
+    double ground_albedo;
+    /* [cloud] */
+    double density_cm3;       /* droplets per cm^3 in the core (rho_0) */
+    double droplet_radius_um; /* effective radius r_e */
+    double boundary_m;        /* h */
+    double noise_scale;       /* 1 = the noise tile spans 1000 m */
+    cu_phase_model phase;
+    double phase_g;
+    cu_profile profile;
+    /* [ellipsoid] ... */
+    int n_ellipsoids;
+    cu_ellipsoid ell[CU_MAX_ELLIPSOIDS];
+    /* [quality] */
+    int segments;             /* per ellipsoid crossed */
+    double segment_ratio;     /* geometric ratio of consecutive segment lengths (1 = uniform) */
+    int hull_tessellation;    /* latitude bands of the hull mesh (longitude = 2x) */
+    int max_intervals;        /* merged in-cloud intervals per pixel */
+    int noise;                /* 0/1 */
+    int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
+    int sun_map_size;         /* texels per side */
+    /* [light] */
+    cu_shadow_method shadow;
+    /* [ms] */
+    cu_ms_mode ms_mode;
+    int ms_octaves;
+    double ms_a, ms_b, ms_c;  /* Wrenninge: extinction, scattering and anisotropy factors per octave */
+};
+
+void cu_scene_defaults(cu_scene *s);
+/* Extinction coefficient of the core in m^-1 (k_e = rho_0 * 2 pi r_e^2, Kol eq. 3.3). */
+double cu_scene_core_extinction(const cu_scene *s);
+#endif

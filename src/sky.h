@@ -1,0 +1,21 @@
+/* src/sky.h: the Preetham et al. 1999 daylight model on the CPU: Perez coefficients for the sky shader, the sun's
+ * irradiance after the atmosphere (Rayleigh + aerosol), and the ground radiance. Units: kcd/m^2 and klx. */
+#ifndef CU_SKY_H
+#define CU_SKY_H
+#include "scene.h"
+#include "vecmath.h"
+
+typedef struct cu_sky {
+    vec3 sun_dir;
+    double sun_irradiance[3];   /* linear RGB, on a plane perpendicular to the rays */
+    double perez[15];           /* A..E for Y, x, y */
+    double zenith[3];           /* Y (kcd/m^2), x, y */
+    double norm[3];             /* F(0, theta_s) for Y, x, y */
+    double ground[3];           /* radiance of the Lambertian ground */
+    double sky_irradiance[3];   /* sky irradiance on a horizontal plane */
+} cu_sky;
+
+void cu_sky_compute(cu_sky *sky, const cu_scene *s);
+/* Sky radiance (linear RGB) in a unit direction with y >= 0, as the shader computes it (without the sun disk). */
+void cu_sky_radiance(const cu_sky *sky, const cu_scene *s, vec3 dir, double out[3]);
+#endif
