@@ -71,9 +71,9 @@ int main(int argc, char **argv)
     g_rank_silent = rank != 0;
     cu_slab_cfg c;
     memset(&c, 0, sizeof c);
-    double tau = -1, thick = -1, ke = 0.0905, mu0 = 1.0, photons = 1e5;
+    double tau = 0, thick = 0, ke = 0.0905, mu0 = 1.0, photons = 1e5;
     const char *phase = "hg:0.85", *report = "totals", *out = NULL;
-    int threads = 2, batches = 100, quiet = 0, nd = 11;
+    int threads = 2, batches = 100, quiet = 0, nd = 11, have_tau = 0, have_thick = 0;
     double seed = 1;
     c.phi_deg = -1;
     /* default table grid: theta_V avoids 90 deg where the interior point estimator has no finite variance */
@@ -87,8 +87,8 @@ int main(int argc, char **argv)
         if (a[0] != '-' || a[1] != '-') die("unexpected argument '%s'", a);
         if (i + 1 >= argc) die("%s needs a value", a);
         const char *v = argv[++i];
-        if (!strcmp(a, "--tau")) tau = num(a, v);
-        else if (!strcmp(a, "--thickness")) thick = num(a, v);
+        if (!strcmp(a, "--tau")) { tau = num(a, v); have_tau = 1; }
+        else if (!strcmp(a, "--thickness")) { thick = num(a, v); have_thick = 1; }
         else if (!strcmp(a, "--ke")) ke = num(a, v);
         else if (!strcmp(a, "--mu0")) mu0 = num(a, v);
         else if (!strcmp(a, "--phase")) phase = v;
@@ -118,9 +118,10 @@ int main(int argc, char **argv)
             else die("--report: unknown report '%s' (totals, radiance, orders, table)", t);
         }
     }
-    if ((tau >= 0) == (thick >= 0)) die("give exactly one of --tau or --thickness");
+    if (have_tau == have_thick) die("give exactly one of --tau or --thickness");
     if (!(ke > 0)) die("--ke must be > 0");
-    if (thick >= 0) tau = ke * thick;
+    if (have_thick && !(thick > 0)) die("--thickness must be > 0, got %g", thick);
+    if (have_thick) tau = ke * thick;
     if (!(tau > 0) || tau > 1e4) die("optical thickness must be in (0, 1e4], got %g", tau);
     if (!(mu0 > 0 && mu0 <= 1)) die("--mu0 must be in (0, 1], got %g", mu0);
     if (!(photons >= 1 && photons <= 1e13) || photons != floor(photons)) die("--photons must be a positive integer");

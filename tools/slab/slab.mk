@@ -16,7 +16,7 @@ $(B)/cumulo-slab-fit: $(SLAB_OBJ)/fit.o $(SLAB_OBJ)/fitlib.o
 	@mkdir -p $(dir $@)
 	$(CC) $(SLAB_CFLAGS) $^ -o $@ $(SLAB_LIBS)
 
-$(B)/test_slab: $(SLAB_OBJ)/test_slab.o $(SLAB_OBJ)/slab.o
+$(B)/test_slab: $(SLAB_OBJ)/test_slab.o $(SLAB_OBJ)/slab.o $(SLAB_OBJ)/fitlib.o
 	@mkdir -p $(dir $@)
 	$(CC) $(SLAB_CFLAGS) $^ -o $@ $(call pc_libs,cmocka) $(SLAB_LIBS)
 

@@ -11,7 +11,7 @@
 #include <gsl/gsl_cdf.h>
 #include "slab.h"
 #include "rng.h"
-/* FITLIB */
+#include "fitlib.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -306,6 +306,58 @@ static void test_determinism(void **st)
     cu_slab_result_free(&a); cu_slab_result_free(&b); cu_slab_result_free(&c); cu_slab_result_free(&d);
 }
 
+/* the fitter: eq. 3.32 fitted with phi_V = 90 deg held out reproduces the held-out cells within the error it reports
+ * on its training cells (held-out median <= training p90, held-out p90 <= 2 x training p90) */
+static void test_fit_holdout(void **st)
+{
+    (void)st;
+    cu_phase ph = { .kind = CU_PH_HG, .g = 0.85 };
+    static const double thl[] = { 0, 40, 65 };
+    int cap = 3 * 8 * 6 * 10 * 5, n = 0;
+    cu_cell *cells = malloc(sizeof(cu_cell) * cap);
+    int *use = malloc(sizeof(int) * cap);
+    for (int l = 0; l < 3; l++) {
+        cu_slab_cfg c = base_cfg(&ph, 9.05, cos(thl[l] * M_PI / 180), 30000);
+        c.metres_per_tau = 1 / 0.0905; c.seed = 500 + l;
+        c.table = 1; c.nd = 6;
+        for (int j = 0; j < 6; j++) c.d_tau[j] = c.tau * j / 5;
+        c.nv = 10; c.nphi = 5;
+        for (int k = 0; k < 10; k++) c.thv_deg[k] = k < 5 ? 20 * k : 20 * k + 20;
+        for (int k = 0; k < 5; k++) c.phv_deg[k] = 45 * k;
+        cu_slab_result r;
+        assert_int_equal(cu_slab_run(&c, &r), 0);
+        for (int g = 0; g < 8; g++)
+            for (int jd = 0; jd < 6; jd++)
+                for (int iv = 0; iv < 10; iv++)
+                    for (int ip = 0; ip < 5; ip++) {
+                        cu_cell_stats s;
+                        cu_slab_cell_stats(&c, &r, cu_slab_cell(&c, g, jd, iv, ip), &s);
+                        cu_cell *e = &cells[n];
+                        e->group = g + 1; e->t = 100; e->d = c.d_tau[jd] / 0.0905; e->thv = c.thv_deg[iv];
+                        e->phv = c.phv_deg[ip]; e->thl = thl[l]; e->C = s.C; e->Cse = s.C_se;
+                        use[n++] = ip != 2;
+                    }
+        cu_slab_result_free(&r);
+    }
+    double *err = malloc(sizeof(double) * n);
+    static const int groups[] = { 3, 8 };
+    for (int k = 0; k < 2; k++) {
+        cu_fit f;
+        assert_int_equal(cu_fit_slice(&f, CU_MODEL_BOUTHORS, groups[k], 100, cells, n, use), 0);
+        double noise;
+        int nt = cu_fit_errors(&f, cells, n, use, 1, 0.01, err, n, &noise);
+        double med = cu_quantile(err, nt, 0.5), p90 = cu_quantile(err, nt, 0.9);
+        int nh = cu_fit_errors(&f, cells, n, use, 0, 0.01, err, n, NULL);
+        double hmed = cu_quantile(err, nh, 0.5), hp90 = cu_quantile(err, nh, 0.9);
+        printf("  fit group %d t=100 m: training %d cells median %.4f p90 %.4f (MC noise %.4f); held-out %d cells "
+               "median %.4f p90 %.4f (%d LM iterations)\n", groups[k], nt, med, p90, noise, nh, hmed, hp90, f.iter);
+        assert_true(nt > 20 && nh > 5);
+        assert_true(hmed <= p90);
+        assert_true(hp90 <= 2 * p90);
+    }
+    free(err); free(cells); free(use);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -318,6 +370,7 @@ int main(void)
         cmocka_unit_test(test_radiance_flux),
         cmocka_unit_test(test_table_transport),
         cmocka_unit_test(test_determinism),
+        cmocka_unit_test(test_fit_holdout),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
