@@ -1,0 +1,45 @@
+#!/bin/sh
+# Draws the README plots with gnuplot: R/T vs thickness, per-group C vs depth, and a fit-vs-simulation profile.
+# Usage (repo root, after rt_sweep.sh and gen_tables.sh): sh tools/slab/plots.sh [TABLE]
+set -eu
+TAB=${1:-build/slab_tables/C_t00400_L30.txt}
+FIT=${FIT:-data/slab_fit_bouthors.txt}
+mkdir -p docs build/slab_plots
+W=build/slab_plots
+gnuplot <<GP
+set terminal pngcairo size 900,600 font "sans,11"
+set output "docs/slab_RT_vs_thickness.png"
+set logscale x
+set xlabel "slab thickness t (m), k_e = 0.0905 m^{-1}"
+set ylabel "flux fraction"
+set key center right
+set grid
+set title "Non-absorbing slab, HG g = 0.85: reflectance R and transmittance T (incl. unscattered), MC +- 1 SE"
+plot "data/slab_RT_vs_thickness.txt" u (\$2==1?\$1:1/0):3:4 w yerrorlines lw 2 t "R, {/Symbol m}_0 = 1", \
+     "" u (\$2==1?\$1:1/0):5:6 w yerrorlines lw 2 t "T, {/Symbol m}_0 = 1", \
+     "" u (\$2==0.5?\$1:1/0):3:4 w yerrorlines lw 2 dt 2 t "R, {/Symbol m}_0 = 0.5", \
+     "" u (\$2==0.5?\$1:1/0):5:6 w yerrorlines lw 2 dt 2 t "T, {/Symbol m}_0 = 0.5"
+GP
+# per-group C vs depth for light going down (thetaV = 0) and up (thetaV = 180), phiV = 0
+for g in 1 2 3 4 5 6 7 8; do
+  awk -v g=$g '$1==g && $4==0 && $5==0 {print $3, $7, $8}' "$TAB" >"$W/down_$g.txt"
+  awk -v g=$g '$1==g && $4==180 && $5==0 {print $3, $7, $8}' "$TAB" >"$W/up_$g.txt"
+done
+info=$(sed -n 2p "$TAB" | sed 's/^# //; s/_/ /g')
+gnuplot <<GP
+set terminal pngcairo size 1100,500 font "sans,10"
+set output "docs/slab_groups_vs_depth.png"
+set multiplot layout 1,2 title "C(n, t, d) per scattering-order group: $info"
+set logscale y
+set xlabel "viewpoint depth d (m)"
+set ylabel "C = I / F_{sun} (sr^{-1})"
+set key outside right
+set grid
+set yrange [1e-5:*]
+set title "light going down ({/Symbol q}_V = 0: seen from below)"
+plot for [g=1:8] "$W/down_".g.".txt" u 1:(\$2>0?\$2:1/0):3 w yerrorlines t word("1 2 3 4 5-6 7-9 10-15 16+", g)
+set title "light going up ({/Symbol q}_V = 180: seen from above)"
+plot for [g=1:8] "$W/up_".g.".txt" u 1:(\$2>0?\$2:1/0):3 w yerrorlines t word("1 2 3 4 5-6 7-9 10-15 16+", g)
+unset multiplot
+GP
+echo "wrote docs/slab_RT_vs_thickness.png docs/slab_groups_vs_depth.png"
