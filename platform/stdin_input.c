@@ -136,24 +136,22 @@ void cu_stdin_feed(cu_stdin *s, const char *data, size_t n, void (*fn)(void *use
 
 int cu_stdin_read(cu_stdin *s, void (*fn)(void *user, const char *line), void *user)
 {
+    /* One read per call: stdin stays blocking (making it non-blocking would change the terminal's or the parent's
+     * file description too), so the caller polls first and a single read never waits. */
     char data[512];
-    for (;;) {
-        ssize_t r = read(s->fd, data, sizeof data);
-        if (r > 0) {
-            cu_stdin_feed(s, data, (size_t)r, fn, user);
-            if ((size_t)r < sizeof data)
-                return 0;
-            continue;
-        }
-        if (r < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
-            return 0;
-        /* End of file: a last line without a newline still counts. */
-        if (s->len && !s->overlong) {
-            s->buf[s->len] = '\0';
-            s->len = 0;
-            fn(user, s->buf);
-        }
-        s->eof = 1;
-        return 1;
+    ssize_t r = read(s->fd, data, sizeof data);
+    if (r > 0) {
+        cu_stdin_feed(s, data, (size_t)r, fn, user);
+        return 0;
     }
+    if (r < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
+        return 0;
+    /* End of file: a last line without a newline still counts. */
+    if (s->len && !s->overlong) {
+        s->buf[s->len] = '\0';
+        s->len = 0;
+        fn(user, s->buf);
+    }
+    s->eof = 1;
+    return 1;
 }

@@ -27,7 +27,7 @@ void cu_stdin_init(cu_stdin *s, int fd);
  * long for the buffer is dropped whole and reported once as the line CU_STDIN_OVERLONG. Pure. */
 #define CU_STDIN_OVERLONG "\001overlong"
 void cu_stdin_feed(cu_stdin *s, const char *data, size_t n, void (*fn)(void *user, const char *line), void *user);
-/* Reads what is available (fd must be non-blocking or polled readable) and hands out lines as cu_stdin_feed does.
+/* One read() (call it when poll() says the fd is readable) and hands out lines as cu_stdin_feed does.
  * Returns 0, or 1 at end of file / read error (s->eof is set). */
 int  cu_stdin_read(cu_stdin *s, void (*fn)(void *user, const char *line), void *user);
 
