@@ -1,0 +1,103 @@
+# platform/test_run.sh: `cumulo run` end to end on this machine: headless run loop for N frames, stdin commands and
+# the sun log lines, bad --input values, missing devices (DRM without /dev/dri, GPIO chip, evdev), SIGTERM.
+. tests/lib.sh
+C=build/cumulo
+S=scenes/cumulus.scene
+OUT=build/test-output/run
+mkdir -p "$OUT"
+
+# Headless loop: exactly N frames, header with GL strings and the surface, a glmark2-style summary line.
+if $C run $S --platform headless --frames 5 --size 64x48 --no-stdin >"$OUT/h.out" 2>"$OUT/h.err"; then
+  if grep -q '^\[run\] .*frames=5 FPS:' "$OUT/h.out" && grep -q 'GL_RENDERER:' "$OUT/h.out" &&
+     grep -q 'GL_VERSION: *OpenGL ES 3' "$OUT/h.out" && grep -q 'Surface:' "$OUT/h.out"; then
+    t_ok headless_five_frames
+  else t_fail headless_five_frames "unexpected output: $(cat "$OUT/h.out")"; fi
+else t_fail headless_five_frames "exit $?: $(cat "$OUT/h.err")"; fi
+
+# stdin commands: each sun change is one machine-readable line; limits clamp; quit ends early with status 0.
+printf 'sun 35 120\nturn 5\ntoggle\nturn -4\nel 95\naz -30\nstatus\nbogus 1\nquit\n' |
+  $C run $S --platform headless --frames 1000 --size 64x48 --accel 0 >"$OUT/s.out" 2>"$OUT/s.err"
+rc=$?
+want='sun elevation=35.000 azimuth=120.000 source=stdin
+sun elevation=35.000 azimuth=125.000 source=stdin
+sun elevation=33.000 azimuth=125.000 source=stdin
+sun elevation=33.000 azimuth=330.000 source=stdin'
+got=$(grep '^sun ' "$OUT/s.err")
+if [ $rc -eq 0 ] && [ "$got" = "$want" ]; then t_ok stdin_sun_log_lines
+else t_fail stdin_sun_log_lines "exit $rc, got: $got"; fi
+if grep -q "^stdin: 'el' needs one number of degrees in -90..90" "$OUT/s.err" &&
+   grep -q "^stdin: unknown command 'bogus'" "$OUT/s.err"; then t_ok stdin_bad_command_messages
+else t_fail stdin_bad_command_messages "$(cat "$OUT/s.err")"; fi
+if grep -q '^status elevation=33.000 azimuth=330.000 knob=elevation' "$OUT/s.out" &&
+   ! grep -q 'frames=1000 ' "$OUT/s.out"; then t_ok stdin_status_and_quit
+else t_fail stdin_status_and_quit "$(cat "$OUT/s.out")"; fi
+
+# Limits from the command line.
+printf 'sun 80 300\n' | $C run $S --platform headless --frames 3 --size 64x48 --sun-elevation-range 5:60 \
+  --sun-azimuth-range 90:270 >/dev/null 2>"$OUT/l.err"
+if grep -q '^sun elevation=60.000 azimuth=270.000 source=stdin' "$OUT/l.err"; then t_ok sun_limits
+else t_fail sun_limits "$(cat "$OUT/l.err")"; fi
+
+# Bad option values: exit 2, one line naming the option.
+t_expect bad_input_kind 2 "--input 'joystick:0': unknown input kind" -- $C run $S --platform headless --input joystick:0
+t_expect bad_input_gpio 2 "needs both 'a=' and 'b='" -- $C run $S --platform headless --input gpio:a=17
+t_expect bad_input_key 2 "unknown key 'x'" -- $C run $S --platform headless --input gpio:a=1,b=2,x=3
+t_expect bad_range 2 "--sun-elevation-range '60:5'" -- $C run $S --platform headless --sun-elevation-range 60:5
+t_expect bad_platform 2 "no display back end 'vga'" -- $C run $S --platform vga
+t_expect bad_frames 2 "--frames expects a whole number" -- $C run $S --platform headless --frames 0
+
+# DRM on a machine without /dev/dri: non-zero and a message that says what to do.
+if [ -e /dev/dri ]; then
+  t_skip drm_without_dev_dri "this machine has /dev/dri"
+else
+  t_expect drm_without_dev_dri 1 "drm: no DRM device: /dev/dri does not exist" -- \
+    $C run $S --platform drm --frames 1 --no-stdin
+fi
+t_expect drm_missing_device 1 "drm: cannot open /nonexistent/card9" -- \
+  $C run $S --platform drm --device /nonexistent/card9 --frames 1 --no-stdin
+
+# A missing GPIO chip / evdev device: one line naming it; with nothing else requested, exit 1.
+t_expect gpio_missing_chip 1 "gpio: no GPIO chip 'gpiochip77'" -- \
+  $C run $S --platform headless --frames 2 --size 64x48 --no-stdin --input gpio:chip=gpiochip77,a=17,b=27
+t_expect evdev_missing 1 "evdev: /dev/input/event99: no such device" -- \
+  $C run $S --platform headless --frames 2 --size 64x48 --no-stdin --input evdev:/dev/input/event99
+# ...but with another input left the program continues.
+out=$(printf 'sun 10 10\n' | $C run $S --platform headless --frames 3 --size 64x48 \
+      --input gpio:chip=gpiochip77,a=17,b=27 --input stdin 2>&1 >/dev/null); rc=$?
+case "$out" in
+  *"gpio: no GPIO chip 'gpiochip77'"*"sun elevation=10.000 azimuth=10.000 source=stdin"*)
+    [ $rc -eq 0 ] && t_ok missing_gpio_continues_with_stdin || t_fail missing_gpio_continues_with_stdin "exit $rc" ;;
+  *) t_fail missing_gpio_continues_with_stdin "$out" ;;
+esac
+
+# SIGTERM: a clean stop (status 0) through the same path that restores the CRTC on DRM.
+mkfifo "$OUT/fifo" 2>/dev/null || true
+$C run $S --platform headless --size 64x48 <"$OUT/fifo" >"$OUT/t.out" 2>"$OUT/t.err" &
+pid=$!
+exec 9>"$OUT/fifo"
+sleep 2
+kill -TERM $pid
+wait $pid; rc=$?
+exec 9>&-
+rm -f "$OUT/fifo"
+if [ $rc -eq 0 ] && grep -q 'terminated, stopping' "$OUT/t.err" && grep -q '^\[run\]' "$OUT/t.out"; then
+  t_ok sigterm_clean_exit
+else t_fail sigterm_clean_exit "exit $rc: $(cat "$OUT/t.err")"; fi
+
+# The X11 window back end, where an X server can be started here (Xvfb; not a dependency: skipped without it).
+if DISPLAY= $C run $S --platform x11 --no-stdin --frames 1 2>&1 | grep -q "no display back end 'x11'"; then
+  t_skip x11_window "this cumulo was built without X11 (libx11-dev missing)"
+elif ! command -v Xvfb >/dev/null 2>&1; then
+  t_skip x11_window "no Xvfb to start a virtual X server (apt-get install xvfb)"
+else
+  Xvfb :97 -screen 0 320x240x24 -nolisten tcp >"$OUT/xvfb.log" 2>&1 &
+  xpid=$!
+  sleep 1
+  if DISPLAY=:97 $C run $S --platform x11 --frames 3 --size 160x120 --no-stdin >"$OUT/x.out" 2>"$OUT/x.err" &&
+     grep -q 'Surface: *EGL .*160x120 window on X11' "$OUT/x.out" && grep -q 'frames=3 ' "$OUT/x.out"; then
+    t_ok x11_window
+  else t_fail x11_window "$(cat "$OUT/x.err" "$OUT/x.out" | tail -3)"; fi
+  kill $xpid 2>/dev/null; wait $xpid 2>/dev/null
+fi
+
+t_summary

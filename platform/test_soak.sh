@@ -1,0 +1,58 @@
+# platform/test_soak.sh: kiosk soak: `cumulo run` headless for N frames (default 10 000, CUMULO_SOAK_FRAMES to change)
+# at 64x48 while the sun moves from stdin every 50 ms; the resident set must not grow after warm-up (leaks in the
+# frame loop or in the sun pass would show here long before months on a wall).
+. tests/lib.sh
+C=build/cumulo
+N=${CUMULO_SOAK_FRAMES:-10000}
+LIMIT_KB=${CUMULO_SOAK_RSS_KB:-3072}
+OUT=build/test-output/soak
+mkdir -p "$OUT"
+rm -f "$OUT/fifo"
+mkfifo "$OUT/fifo" || { t_fail soak "cannot make a fifo in $OUT"; t_summary; exit 1; }
+
+$C run scenes/cumulus.scene --platform headless --frames "$N" --size 64x48 <"$OUT/fifo" >"$OUT/run.out" 2>"$OUT/run.err" &
+pid=$!
+# The sun walks around the sky and up and down, one command per 50 ms, for as long as the program runs.
+(
+  i=0
+  while kill -0 $pid 2>/dev/null; do
+    echo "sun $(( (i % 120) - 20 )) $(( (i * 7) % 360 ))"
+    i=$((i + 1))
+    sleep 0.05
+  done
+) >"$OUT/fifo" 2>/dev/null &
+gen=$!
+
+samples=""
+while kill -0 $pid 2>/dev/null; do
+  kb=$(awk '/^VmRSS:/ {print $2}' /proc/$pid/status 2>/dev/null)
+  [ -n "$kb" ] && samples="$samples $kb"
+  sleep 2
+done
+wait $pid; rc=$?
+kill $gen 2>/dev/null; wait $gen 2>/dev/null
+rm -f "$OUT/fifo"
+echo "RSS samples (kB):$samples" >"$OUT/rss.txt"
+
+set -- $samples
+count=$#
+if [ $rc -ne 0 ]; then
+  t_fail soak_runs "exit $rc: $(tail -3 "$OUT/run.err")"
+elif ! grep -q "^\[run\] .*frames=$N FPS:" "$OUT/run.out"; then
+  t_fail soak_runs "did not render $N frames: $(tail -2 "$OUT/run.out")"
+else
+  t_ok soak_runs
+fi
+changes=$(grep -c '^sun elevation=' "$OUT/run.err")
+[ "$changes" -gt 10 ] && t_ok soak_sun_changes || t_fail soak_sun_changes "only $changes sun changes logged"
+if [ "$count" -lt 4 ]; then
+  t_skip soak_rss_growth "run too short for RSS samples ($count); raise CUMULO_SOAK_FRAMES"
+else
+  # Baseline after a quarter of the run (allocators and the driver's caches warmed up), against the last sample.
+  base=$(echo $samples | awk '{print $(int(NF / 4) + 1)}')
+  last=$(echo $samples | awk '{print $NF}')
+  growth=$((last - base))
+  echo "soak: $N frames, $changes sun changes, RSS $base kB -> $last kB (growth $growth kB, limit $LIMIT_KB kB)"
+  [ "$growth" -le "$LIMIT_KB" ] && t_ok soak_rss_growth || t_fail soak_rss_growth "RSS grew $growth kB ($base -> $last)"
+fi
+t_summary
