@@ -100,4 +100,24 @@ else
   kill $xpid 2>/dev/null; wait $xpid 2>/dev/null
 fi
 
+# The Wayland window back end, on a headless Weston where one can be started here (not a dependency).
+if WAYLAND_DISPLAY= XDG_RUNTIME_DIR= $C run $S --platform wayland --no-stdin --frames 1 2>&1 |
+   grep -q "no display back end 'wayland'"; then
+  t_skip wayland_window "this cumulo was built without Wayland (libwayland-dev, wayland-protocols missing)"
+elif ! command -v weston >/dev/null 2>&1; then
+  t_skip wayland_window "no weston to start a headless compositor (apt-get install weston)"
+else
+  rt=$(mktemp -d)
+  XDG_RUNTIME_DIR=$rt weston --backend=headless-backend.so --socket=wl-test --width=320 --height=240 \
+    --idle-time=0 >"$OUT/weston.log" 2>&1 &
+  wpid=$!
+  i=0; while [ $i -lt 50 ] && [ ! -S "$rt/wl-test" ]; do sleep 0.1; i=$((i + 1)); done
+  if XDG_RUNTIME_DIR=$rt WAYLAND_DISPLAY=wl-test $C run $S --platform wayland --frames 3 --size 160x120 --no-stdin \
+       >"$OUT/w.out" 2>"$OUT/w.err" && grep -q 'Surface: *EGL .*160x120 window on Wayland' "$OUT/w.out"; then
+    t_ok wayland_window
+  else t_fail wayland_window "$(cat "$OUT/w.err" "$OUT/w.out" | tail -3)"; fi
+  kill $wpid 2>/dev/null; wait $wpid 2>/dev/null
+  rm -rf "$rt"
+fi
+
 t_summary
