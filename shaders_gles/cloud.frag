@@ -3,7 +3,7 @@
 // eqs. 3.20-3.22), over the ray's in-cloud intervals in front-to-back order, output premultiplied over the sky.
 //
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
-// NOISE_OCTAVES, PROFILE_KOL, MS_OCTAVES (1 = single scattering only), FULLSCREEN (camera inside a hull).
+// NOISE_OCTAVES, PROFILE_KOL, MS_MODE (0 none, 1 octaves, 2 diffusion), MS_OCTAVES, FULLSCREEN (camera inside).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
@@ -34,6 +34,10 @@ uniform int u_phase_n;
 uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
 uniform sampler2D u_sun_depth; // sun-space front depth / 4R
+#if MS_MODE == 2
+uniform sampler2D u_sun_back;  // sun-space back depth / 4R
+uniform float u_one_minus_g;   // similarity scaling of optical depth for the diffuse field
+#endif
 uniform vec3 u_sun_right, u_sun_up;
 uniform float u_sun_R;
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
@@ -115,8 +119,10 @@ float extinction(vec3 p, float t)
 }
 
 // Kol's sun transmittance estimate: distance l from p to the front surface seen from the sun, times k_e(p).
-float sun_optical_depth(vec3 p, float ke)
+// Also returns, for the diffuse term, the depth l below the front and the in-cloud thickness along the sun ray.
+float sun_optical_depth(vec3 p, float ke, out vec2 slab)
 {
+    slab = vec2(0.0);
     vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
         return 0.0;
@@ -125,8 +131,29 @@ float sun_optical_depth(vec3 p, float ke)
         return 0.0;
     float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
     float l = max(z - front * 4.0 * u_sun_R, 0.0);
+#if MS_MODE == 2
+    float back = textureLod(u_sun_back, uv, 0.0).r;
+    float t = max(back - front, 0.0) * 4.0 * u_sun_R;
+    slab = vec2(min(l, t), t);
+#endif
     return l * ke;
 }
+
+#if MS_MODE == 2
+// Multiply scattered light from diffusion theory in a conservative slab lit at normal incidence, thickness and depth
+// taken along the sun ray (the slab model of a later stage fits orientation too). Similarity-scaled optical depths
+// t' = (1-g) k_e t; net flux F = T E with the thick-slab transmittance T = (4/3) u(1) / (t'_tot + 1.42),
+// u(1) = 9/7 (VALIDATION.md); the mean diffuse radiance falls linearly to zero at the extrapolated far boundary
+// (0.71 beyond it): J = 3 F (t'_tot - t' + 0.71) / (4 pi). (1 - e^-tau_tot) takes it to zero for thin slabs, where
+// diffusion does not hold. Returns J / E.
+float diffuse_radiance(vec2 slab)
+{
+    float k = u_one_minus_g * u_ke;
+    float tp = k * slab.x, tt = k * slab.y;
+    float T = min((4.0 / 3.0) * (9.0 / 7.0) / (tt + 1.42), 1.0);
+    return 3.0 * T * (tt - tp + 0.71) / (4.0 * PI) * (1.0 - exp(-u_ke * slab.y));
+}
+#endif
 
 vec3 phase_table(float cos_theta)
 {
@@ -180,7 +207,7 @@ void main()
     // Per-pixel constants: the scattering angle is the same along the ray (parallel sunlight).
     float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
     vec3 ph0 = phase_table(mu);
-#if MS_OCTAVES > 1
+#if MS_MODE == 1
     float ph_oct[MS_OCTAVES];
     float bo = 1.0, go = u_ms_g;
     for (int o = 1; o < MS_OCTAVES; o++) {
@@ -209,25 +236,35 @@ void main()
         float r = u_seg_ratio;
         float rn = r > 1.0001 ? pow(r, float(nseg)) - 1.0 : 0.0;
         float seg = r > 1.0001 ? len * (r - 1.0) / rn : len / float(nseg);
+        // The end samples sit a hair inside the interval (Kol 3.4.4 offsets the entry point too): exactly on the
+        // surface d = 0 and a thin boundary (h -> 0) would make the step from air to core invisible to the
+        // trapezoids; just inside, they see the one-sided limit. Segment lengths stay those of [a, b].
+        float nudge = min(1e-3 * len, 0.05);
         float t = a;
-        vec3 p = u_cam + dir * t;
-        float ke_prev = extinction(p, t);
-        float ts = sun_optical_depth(p, ke_prev);
+        vec3 p = u_cam + dir * (t + nudge);
+        float ke_prev = extinction(p, t + nudge);
+        vec2 slab;
+        float ts = sun_optical_depth(p, ke_prev, slab);
         vec3 F_prev = ke_prev * ph0 * exp(-ts);
-#if MS_OCTAVES > 1
+#if MS_MODE == 1
         { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F_prev += vec3(ke_prev * ph_oct[o] * exp(-ao * ts)); } }
+#elif MS_MODE == 2
+        F_prev += vec3(ke_prev * diffuse_radiance(slab));
 #endif
         F_prev *= exp(-tau);
         for (int i = 0; i < nseg; i++) {
             float x = (i == nseg - 1) ? (b - t) : seg;
             t += x;
-            p = u_cam + dir * t;
-            float ke = extinction(p, t);
+            float ts_at = (i == nseg - 1) ? t - nudge : t;
+            p = u_cam + dir * ts_at;
+            float ke = extinction(p, ts_at);
             float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
-            float ts_i = sun_optical_depth(p, ke);
+            float ts_i = sun_optical_depth(p, ke, slab);
             vec3 F = ke * ph0 * exp(-ts_i);               // eq. 3.21
-#if MS_OCTAVES > 1
+#if MS_MODE == 1
             { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F += vec3(ke * ph_oct[o] * exp(-ao * ts_i)); } }
+#elif MS_MODE == 2
+            F += vec3(ke * diffuse_radiance(slab));
 #endif
             F *= exp(-(tau + dtau));
             L += x * 0.5 * (F_prev + F);                  // eq. 3.20

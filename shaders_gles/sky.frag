@@ -38,12 +38,13 @@ void main()
     vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
     vec3 dir = normalize(w.xyz / w.w);
     vec3 L;
+#if SKY_CONSTANT
+    L = u_sky_color; // uniform radiance from every direction, below the horizon too (matches other renderers)
+    {
+#else
     if (dir.y < 0.0) {
         L = u_ground;
     } else {
-#if SKY_CONSTANT
-        L = u_sky_color;
-#else
         float cos_gamma = clamp(dot(dir, u_sun_dir), -1.0, 1.0);
         float gamma = acos(cos_gamma);
         float Y = u_zenith.x * perez(0, dir.y, gamma, cos_gamma) / u_norm.x;

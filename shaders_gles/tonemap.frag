@@ -1,9 +1,10 @@
 #version 300 es
-// shaders_gles/tonemap.frag: final pass from the linear HDR target: exposure, ACES filmic curve (Narkowicz fit) and
+// shaders_gles/tonemap.frag: final pass from the linear HDR target: exposure, white balance, ACES filmic curve (Narkowicz fit) and
 // the sRGB transfer function; or a plain copy of linear radiance when LINEAR_OUTPUT is set (PFM, tests).
 precision highp float;
 uniform highp sampler2D u_hdr;
 uniform float u_exposure;
+uniform vec3 u_white;        // white balance: divides by the colour of typical daylight
 out vec4 o_color;
 vec3 srgb(vec3 c)
 {
@@ -15,7 +16,7 @@ void main()
 #if LINEAR_OUTPUT
     o_color = c;
 #else
-    vec3 x = max(c.rgb * u_exposure, vec3(0.0));
+    vec3 x = max(c.rgb * u_exposure / u_white, vec3(0.0));
     vec3 t = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
     o_color = vec4(srgb(t), 1.0);
 #endif

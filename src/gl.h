@@ -11,7 +11,7 @@
     X(BindTexture, BINDTEXTURE) X(BindVertexArray, BINDVERTEXARRAY) X(BlendFunc, BLENDFUNC) \
     X(BufferData, BUFFERDATA) X(BufferSubData, BUFFERSUBDATA) \
     X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS) X(Clear, CLEAR) X(ClearColor, CLEARCOLOR) \
-    X(ClearDepthf, CLEARDEPTHF) X(ColorMask, COLORMASK) X(CompileShader, COMPILESHADER) \
+    X(ClearDepthf, CLEARDEPTHF) X(ClearStencil, CLEARSTENCIL) X(ColorMask, COLORMASK) X(CompileShader, COMPILESHADER) \
     X(CreateProgram, CREATEPROGRAM) X(CreateShader, CREATESHADER) X(DeleteBuffers, DELETEBUFFERS) \
     X(DeleteFramebuffers, DELETEFRAMEBUFFERS) X(DeleteProgram, DELETEPROGRAM) X(DeleteQueries, DELETEQUERIES) \
     X(DeleteRenderbuffers, DELETERENDERBUFFERS) X(DeleteShader, DELETESHADER) X(DeleteTextures, DELETETEXTURES) \
@@ -26,7 +26,7 @@
     X(GetProgramiv, GETPROGRAMIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \
     X(GetShaderiv, GETSHADERIV) X(GetString, GETSTRING) X(GetStringi, GETSTRINGI) \
     X(GetUniformLocation, GETUNIFORMLOCATION) X(LinkProgram, LINKPROGRAM) X(PixelStorei, PIXELSTOREI) \
-    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(ShaderSource, SHADERSOURCE) \
+    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(ShaderSource, SHADERSOURCE) X(StencilFunc, STENCILFUNC) X(StencilOp, STENCILOP) \
     X(TexImage2D, TEXIMAGE2D) X(TexImage3D, TEXIMAGE3D) X(TexParameteri, TEXPARAMETERI) \
     X(Uniform1f, UNIFORM1F) X(Uniform1fv, UNIFORM1FV) X(Uniform1i, UNIFORM1I) X(Uniform2f, UNIFORM2F) \
     X(Uniform3f, UNIFORM3F) X(Uniform3fv, UNIFORM3FV) X(Uniform4fv, UNIFORM4FV) \

@@ -38,7 +38,23 @@ int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_
         double p = s->phase == CU_PHASE_HG ? cu_phase_hg(s->phase_g, mu) : cu_phase_cornette_shanks(s->phase_g, mu);
         t->rgb[3 * i] = t->rgb[3 * i + 1] = t->rgb[3 * i + 2] = (float)p;
     }
+    cu_phase_table_moments(t);
     return 0;
+}
+
+void cu_phase_table_moments(cu_phase_table *t)
+{
+    for (int c = 0; c < 3; c++) {
+        double s0 = 0, s1 = 0, h = CU_PI / (t->n - 1);
+        for (int i = 0; i < t->n; i++) {
+            double th = h * i, w = (i == 0 || i == t->n - 1) ? 0.5 : 1.0;
+            double v = t->rgb[3 * i + c] * sin(th) * w * h * 2.0 * CU_PI;
+            s0 += v;
+            s1 += v * cos(th);
+        }
+        t->integral[c] = s0;
+        t->mean_cos[c] = s0 > 0 ? s1 / s0 : 0;
+    }
 }
 
 void cu_phase_table_free(cu_phase_table *t)

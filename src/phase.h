@@ -9,7 +9,12 @@
 typedef struct cu_phase_table {
     int n;
     float *rgb;     /* n * 3 values, sr^-1, normalised: integral over the sphere = 1 */
+    double integral[3];  /* 2 pi * integral of p sin(theta) dtheta: 1 up to the quadrature error */
+    double mean_cos[3];  /* <cos theta>, the g used for similarity scaling */
 } cu_phase_table;
+
+/* Fills integral and mean_cos by the trapezoidal rule over the table's grid. */
+void cu_phase_table_moments(cu_phase_table *t);
 
 double cu_phase_hg(double g, double cos_theta);
 double cu_phase_cornette_shanks(double g, double cos_theta);

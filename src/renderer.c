@@ -99,7 +99,7 @@ const char *cu_renderer_gl_string(const cu_renderer *r, int which)
 
 static void delete_programs(cu_renderer *r)
 {
-    GLuint *p[] = {&r->prog_sun, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
+    GLuint *p[] = {&r->prog_sun, &r->prog_sun_back, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
                    &r->prog_copy};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (*p[i]) {
@@ -112,12 +112,14 @@ static void delete_scene_objects(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
     delete_programs(r);
-    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->hdr_tex};
-    for (size_t i = 0; i < 4; i++)
+    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->sun_back_tex, r->hdr_tex};
+    for (size_t i = 0; i < 5; i++)
         if (tex[i])
             gl->DeleteTextures(1, &tex[i]);
-    r->noise_tex = r->phase_tex = r->sun_tex = r->hdr_tex = 0;
+    r->noise_tex = r->phase_tex = r->sun_tex = r->sun_back_tex = r->hdr_tex = 0;
     if (r->sun_fbo) gl->DeleteFramebuffers(1, &r->sun_fbo);
+    if (r->sun_back_fbo) gl->DeleteFramebuffers(1, &r->sun_back_fbo);
+    r->sun_back_fbo = 0;
     if (r->hdr_fbo) gl->DeleteFramebuffers(1, &r->hdr_fbo);
     if (r->hdr_depth) gl->DeleteRenderbuffers(1, &r->hdr_depth);
     r->sun_fbo = r->hdr_fbo = r->hdr_depth = 0;
@@ -174,6 +176,7 @@ static int upload_phase(cu_renderer *r, cu_error *err)
     cu_phase_table t;
     if (cu_phase_table_build(&t, &r->scene, r->desc.data_dir ? r->desc.data_dir : "data", err))
         return 1;
+    r->phase_g_eff = t.mean_cos[1];
     float *rgba = malloc(sizeof(float) * 4 * (size_t)t.n);
     if (!rgba) {
         cu_phase_table_free(&t);
@@ -257,14 +260,18 @@ static int build_programs(cu_renderer *r, cu_error *err)
     /* Model only what the scene requires: counts and features are compile-time constants. */
     snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
-             "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_OCTAVES %d\n#define SKY_CONSTANT %d\n",
+             "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
+             "#define SKY_CONSTANT %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
-             s->profile == CU_PROFILE_KOL, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
+             s->profile == CU_PROFILE_KOL, (int)s->ms_mode, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT);
-    char fs_defs[1100], hull_defs[1100], lin[1100];
-    snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n", defs);
+    char fs_defs[1100], hull_defs[1100], lin[1100], back_defs[1100];
+    snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n#define SUN_BACK 0\n", defs);
+    snprintf(back_defs, sizeof back_defs, "%s#define FULLSCREEN 0\n#define SUN_BACK 1\n", defs);
     snprintf(fs_defs, sizeof fs_defs, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 0\n", defs);
     snprintf(lin, sizeof lin, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 1\n", defs);
+    if (r->need_sun_back && !(r->prog_sun_back = hull_program(r, "sun_depth.frag", back_defs, err)))
+        return 1;
     if (!(r->prog_sun = hull_program(r, "sun_depth.frag", hull_defs, err)) ||
         !(r->prog_depth = hull_program(r, "depth.frag", hull_defs, err)) ||
         !(r->prog_cloud = hull_program(r, "cloud.frag", hull_defs, err)) ||
@@ -276,12 +283,11 @@ static int build_programs(cu_renderer *r, cu_error *err)
     return 0;
 }
 
-static int make_sun_map(cu_renderer *r, cu_error *err)
+static int make_depth_target(cu_renderer *r, GLuint *tex, GLuint *fbo, cu_error *err)
 {
     cu_gl *gl = &r->gl;
-    r->sun_size = r->scene.sun_map_size;
-    gl->GenTextures(1, &r->sun_tex);
-    gl->BindTexture(GL_TEXTURE_2D, r->sun_tex);
+    gl->GenTextures(1, tex);
+    gl->BindTexture(GL_TEXTURE_2D, *tex);
     gl->TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, r->sun_size, r->sun_size, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                    NULL);
     /* Depth textures are not filterable in GLES 3.0 without comparison: NEAREST. */
@@ -290,15 +296,26 @@ static int make_sun_map(cu_renderer *r, cu_error *err)
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    gl->GenFramebuffers(1, &r->sun_fbo);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
-    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->sun_tex, 0);
+    gl->GenFramebuffers(1, fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, *tex, 0);
     GLenum none = GL_NONE;
     gl->DrawBuffers(1, &none);
     GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (st != GL_FRAMEBUFFER_COMPLETE)
         return fail(err, "sun map: depth framebuffer incomplete (0x%x)", st);
+    return 0;
+}
+
+static int make_sun_map(cu_renderer *r, cu_error *err)
+{
+    r->sun_size = r->scene.sun_map_size;
+    if (make_depth_target(r, &r->sun_tex, &r->sun_fbo, err))
+        return 1;
+    /* The back map exists only when a term needs the thickness along the sun ray. */
+    if (r->need_sun_back && make_depth_target(r, &r->sun_back_tex, &r->sun_back_fbo, err))
+        return 1;
     return 0;
 }
 
@@ -311,6 +328,8 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         return 1;
     cu_cloud_build(&r->cloud, &r->scene, &r->noise);
     cu_sky_compute(&r->sky, &r->scene);
+    r->need_sun_back = r->scene.ms_mode == CU_MS_DIFFUSION;
+    cu_sky_white_balance(&r->scene, r->white);
     if (upload_phase(r, err) || build_programs(r, err) || make_sun_map(r, err))
         return 1;
     upload_hulls(r);
@@ -382,23 +401,28 @@ static void sun_pass(cu_renderer *r)
     mat4 proj = m4_ortho(-R, R, -R, R, 0.0, 4.0 * R);
     float vp[16];
     m4_to_float(m4_mul(proj, view), vp);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
     gl->Viewport(0, 0, r->sun_size, r->sun_size);
     gl->DepthMask(GL_TRUE);
-    gl->ClearDepthf(1.0f);
-    gl->Clear(GL_DEPTH_BUFFER_BIT);
     gl->Enable(GL_DEPTH_TEST);
-    gl->DepthFunc(GL_LESS);
     gl->Disable(GL_CULL_FACE);
     gl->Disable(GL_BLEND);
-    gl->UseProgram(r->prog_sun);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_sun, "u_viewproj"), 1, GL_FALSE, vp);
-    set_ellipsoid_uniforms(r, r->prog_sun);
-    gl->Uniform3f(gl->GetUniformLocation(r->prog_sun, "u_sun_dir"), (float)r->sky.sun_dir.x, (float)r->sky.sun_dir.y,
-                  (float)r->sky.sun_dir.z);
-    gl->Uniform1f(gl->GetUniformLocation(r->prog_sun, "u_sun_R"), (float)R);
     gl->BindVertexArray(r->hull_vao);
-    gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
+    for (int back = 0; back <= r->need_sun_back; back++) {
+        GLuint prog = back ? r->prog_sun_back : r->prog_sun;
+        gl->BindFramebuffer(GL_FRAMEBUFFER, back ? r->sun_back_fbo : r->sun_fbo);
+        gl->ClearDepthf(back ? 0.0f : 1.0f);
+        gl->Clear(GL_DEPTH_BUFFER_BIT);
+        gl->DepthFunc(back ? GL_GREATER : GL_LESS);
+        gl->UseProgram(prog);
+        gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_viewproj"), 1, GL_FALSE, vp);
+        set_ellipsoid_uniforms(r, prog);
+        gl->Uniform3f(gl->GetUniformLocation(prog, "u_sun_dir"), (float)r->sky.sun_dir.x, (float)r->sky.sun_dir.y,
+                      (float)r->sky.sun_dir.z);
+        gl->Uniform1f(gl->GetUniformLocation(prog, "u_sun_R"), (float)R);
+        gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
+    }
+    gl->ClearDepthf(1.0f);
+    gl->DepthFunc(GL_LESS);
     gl->BindVertexArray(0);
     r->sun_dirty = 0;
 }
@@ -428,11 +452,11 @@ static int ensure_hdr(cu_renderer *r, int w, int h, int linear, cu_error *err)
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl->GenRenderbuffers(1, &r->hdr_depth);
     gl->BindRenderbuffer(GL_RENDERBUFFER, r->hdr_depth);
-    gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    gl->RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, w, h);
     gl->GenFramebuffers(1, &r->hdr_fbo);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->hdr_fbo);
     gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->hdr_tex, 0);
-    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, r->hdr_depth);
+    gl->FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, r->hdr_depth);
     GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
     if (st != GL_FRAMEBUFFER_COMPLETE)
         return fail(err, "HDR framebuffer incomplete (0x%x)", st);
@@ -480,6 +504,8 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->Uniform1i(gl->GetUniformLocation(p, "u_noise"), 0);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase"), 1);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_back"), 3);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_one_minus_g"), (float)(1.0 - r->phase_g_eff));
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase_n"), CU_PHASE_N);
     vec3 sd = r->sky.sun_dir;
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_dir"), (float)sd.x, (float)sd.y, (float)sd.z);
@@ -513,15 +539,19 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
     double dist = v3_len(cam);
     double zfar = dist + r->cloud.bound_radius * cu_hull_scale(s->hull_tessellation) * 1.05 + 10.0;
-    double znear = fmax(0.05, zfar * 1e-5);
+    /* Near plane as far out as the clouds allow: depth precision ~ z^2 / (near 2^24). */
+    double hull_r = r->cloud.bound_radius * cu_hull_scale(s->hull_tessellation);
+    double znear = fmax(0.05, 0.5 * (dist - hull_r));
     mat4 view = m4_look_dir(cam, dir, v3(0, 1, 0));
     mat4 proj = m4_perspective(s->cam_fov * CU_PI / 180.0, (double)f->width / f->height, znear, zfar);
     mat4 vp_m = m4_mul(proj, view);
     float vp[16], inv_vp[16], inv_rot[16];
     m4_to_float(vp_m, vp);
     m4_to_float(m4_inverse(vp_m), inv_vp);
-    /* The sky only needs directions: same projection with the camera at the origin. */
-    m4_to_float(m4_inverse(m4_mul(proj, m4_look_dir(v3(0, 0, 0), dir, v3(0, 1, 0)))), inv_rot);
+    /* The sky only needs directions: the camera at the origin and fixed clip planes, so the sky does not depend on
+     * where the clouds are (an empty scene is bit-for-bit the sky). */
+    mat4 proj_dir = m4_perspective(s->cam_fov * CU_PI / 180.0, (double)f->width / f->height, 1.0, 2.0);
+    m4_to_float(m4_inverse(m4_mul(proj_dir, m4_look_dir(v3(0, 0, 0), dir, v3(0, 1, 0)))), inv_rot);
 
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->hdr_fbo);
     gl->Viewport(0, 0, f->width, f->height);
@@ -529,7 +559,8 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->Disable(GL_BLEND);
     gl->DepthMask(GL_TRUE);
     gl->ClearDepthf(1.0f);
-    gl->Clear(GL_DEPTH_BUFFER_BIT);
+    gl->ClearStencil(0);
+    gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
 
     /* Sky pass. */
     gl->Disable(GL_DEPTH_TEST);
@@ -566,6 +597,8 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->BindTexture(GL_TEXTURE_2D, r->phase_tex);
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, r->sun_tex);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, r->sun_back_tex);
     gl->ActiveTexture(GL_TEXTURE0);
 
     int inside = camera_inside_hull(r, cam, znear);
@@ -587,13 +620,20 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
             gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_depth, "u_viewproj"), 1, GL_FALSE, vp);
             gl->BindVertexArray(r->hull_vao);
             gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
-            /* Cloud pass: only the fragment that won the depth test is shaded. */
+            /* Cloud pass: only the fragment that won the depth test is shaded. Where two hulls' depths are equal
+             * to the depth buffer's precision, both would pass GL_EQUAL and blend the whole ray twice; the stencil
+             * lets the first of them through and no other (the shader integrates the whole ray, so any one will
+             * do). */
             gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
             gl->Enable(GL_BLEND);
             gl->DepthFunc(GL_EQUAL);
             gl->DepthMask(GL_FALSE);
+            gl->Enable(GL_STENCIL_TEST);
+            gl->StencilFunc(GL_EQUAL, 0, 0xff);
+            gl->StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
             set_cloud_uniforms(r, r->prog_cloud, cam, vp, inv_vp);
             gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
+            gl->Disable(GL_STENCIL_TEST);
             gl->DepthMask(GL_TRUE);
             gl->DepthFunc(GL_LESS);
         }
@@ -610,6 +650,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->BindTexture(GL_TEXTURE_2D, r->hdr_tex);
     gl->Uniform1i(gl->GetUniformLocation(fp, "u_hdr"), 0);
     gl->Uniform1f(gl->GetUniformLocation(fp, "u_exposure"), (float)s->exposure);
+    gl->Uniform3f(gl->GetUniformLocation(fp, "u_white"), (float)r->white[0], (float)r->white[1], (float)r->white[2]);
     gl->BindVertexArray(r->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);

@@ -28,7 +28,7 @@ typedef struct key_def {
 
 static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
 static const char *const profile_names[] = {"tapered", "kol", NULL};
-static const char *const ms_names[] = {"none", "octaves", NULL};
+static const char *const ms_names[] = {"none", "octaves", "diffusion", NULL};
 static const char *const sky_names[] = {"preetham", "constant", NULL};
 static const char *const shadow_names[] = {"front", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
@@ -103,7 +103,7 @@ void cu_scene_defaults(cu_scene *s)
     s->noise_octaves = 5;
     s->sun_map_size = 256;
     s->shadow = CU_SHADOW_FRONT;
-    s->ms_mode = CU_MS_OCTAVES;
+    s->ms_mode = CU_MS_DIFFUSION;
     s->ms_octaves = 4;
     s->ms_a = 0.5;
     s->ms_b = 0.5;

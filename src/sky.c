@@ -112,3 +112,21 @@ void cu_sky_compute(cu_sky *sky, const cu_scene *s)
         sky->ground[c] = s->ground_albedo / CU_PI * (sky->sun_irradiance[c] * mu_s + E[c]);
     }
 }
+
+void cu_sky_white_balance(const cu_scene *s, double white[3])
+{
+    white[0] = white[1] = white[2] = 1.0;
+    if (s->has_sun_irradiance || s->sky_model == CU_SKY_CONSTANT)
+        return;
+    cu_scene ref = *s;
+    ref.sun_elevation = 60.0;
+    ref.turbidity = 2.5;
+    cu_sky sky;
+    cu_sky_compute(&sky, &ref);
+    double e[3];
+    for (int c = 0; c < 3; c++)
+        e[c] = sky.sun_irradiance[c];
+    double Y = 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
+    for (int c = 0; c < 3; c++)
+        white[c] = e[c] / Y;
+}

@@ -18,4 +18,8 @@ typedef struct cu_sky {
 void cu_sky_compute(cu_sky *sky, const cu_scene *s);
 /* Sky radiance (linear RGB) in a unit direction with y >= 0, as the shader computes it (without the sun disk). */
 void cu_sky_radiance(const cu_sky *sky, const cu_scene *s, vec3 dir, double out[3]);
+/* White balance for display, like a camera set to daylight: the RGB colour of the sun's irradiance for a sun 60
+ * degrees high (turbidity 2.5), scaled to unit luminance (clouds are lit mostly by the sun). A midday cloud is white; a low sun
+ * still looks warm. With a scene that gives its own sun irradiance or a constant sky, no balance is applied. */
+void cu_sky_white_balance(const cu_scene *s, double white[3]);
 #endif

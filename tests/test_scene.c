@@ -1,0 +1,180 @@
+/* tests/test_scene.c: the scene parser on good files and on hostile input, each bad case with its exact message. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "scene.h"
+
+#define MIN_SCENE "[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\nelevation = 30\n[cloud]\n" \
+                  "[ellipsoid]\ncenter = 0 0 0\nradii = 1 2 3\n"
+
+static int parse(const char *text, cu_scene **s, cu_error *e)
+{
+    return cu_scene_parse(s, "t.scene", text, strlen(text), e);
+}
+
+static void test_good_minimal_and_defaults(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse(MIN_SCENE, &s, &e), 0);
+    assert_int_equal(s->n_ellipsoids, 1);
+    assert_true(s->ell[0].radii[2] == 3.0);
+    assert_int_equal(s->width, 640);
+    assert_int_equal(s->segments, 5);
+    assert_true(s->density_cm3 == 400.0 && s->droplet_radius_um == 6.0);
+    /* k_e = 400e6 m^-3 * 2 pi (6e-6 m)^2 = 0.0905 m^-1 (DESIGN.md) */
+    assert_true(fabs(cu_scene_core_extinction(s) - 0.0904779) < 1e-6);
+    cu_scene_free(s);
+}
+
+static void test_good_default_scene_file(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    int rc = cu_scene_load(&s, "scenes/cumulus.scene", &e);
+    if (rc)
+        fail_msg("%s", e.msg);
+    assert_int_equal(s->n_ellipsoids, 8);
+    assert_true(s->cam_pos[2] == -1200.0 && s->sun_azimuth == 135.0 && s->boundary_m == 62.0);
+    assert_int_equal(s->phase, CU_PHASE_CORNETTE_SHANKS);
+    cu_scene_free(s);
+}
+
+static void test_comments_crlf_and_set(void **st)
+{
+    (void)st;
+    const char *t = "# comment\r\n[camera]   ; trailing\r\nposition = 1, 2, 3 # commas allowed\r\nlook_at=0 0 0\r\n"
+                    "[sun]\r\nelevation = -5\r\nazimuth = 270\r\n[cloud]\r\nphase = hg\r\ng = 0.5\r\n"
+                    "[ellipsoid]\r\ncenter = 0 0 0\r\nradii = 1 1 1\r\n[ellipsoid]\r\ncenter = 5 0 0\r\nradii = 2 2 2\r\n";
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse(t, &s, &e), 0);
+    assert_true(s->cam_pos[1] == 2.0 && s->sun_elevation == -5.0 && s->phase == CU_PHASE_HG);
+    assert_int_equal(cu_scene_set(s, "quality.segments=12", &e), 0);
+    assert_int_equal(s->segments, 12);
+    assert_int_equal(cu_scene_set(s, "ellipsoid.2.radii=3 4 5", &e), 0);
+    assert_true(s->ell[1].radii[1] == 4.0);
+    assert_int_equal(cu_scene_set(s, "ms.mode=octaves", &e), 0);
+    assert_int_equal(s->ms_mode, CU_MS_OCTAVES);
+    assert_int_equal(cu_scene_set(s, "sun.irradiance=1 2 3", &e), 0);
+    assert_int_equal(s->has_sun_irradiance, 1);
+    cu_scene_free(s);
+}
+
+typedef struct bad_case {
+    const char *text;
+    const char *message;
+} bad_case;
+
+/* Every entry: a hostile input and the exact message the user must see. */
+static const bad_case bad[] = {
+    {"", "t.scene:1:1: empty scene file"},
+    {"# only a comment\n\n", "t.scene:1:1: empty scene file"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n", "t.scene: missing section [ellipsoid] (a cloud needs at least one)"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[cloud]\n[ellipsoid]\ncenter=0 0 0\nradii=1 1 1\n", "t.scene: missing section [sun]"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 200 120\n",
+     "t.scene:8:9: 'radii' needs 3 numbers, got 2"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 -2 3\n",
+     "t.scene:8:9: 'radii' must be positive, got -2"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 0 3\n",
+     "t.scene:8:9: 'radii' must be positive, got 0"},
+    {"[camera]\nposition = nan 0 0\n", "t.scene:2:12: 'position' is NaN"},
+    {"[camera]\nfov = inf\n", "t.scene:2:7: 'fov' is out of range (inf)"},
+    {"[camera]\nfov = 1e400\n", "t.scene:2:7: 'fov' is out of range (1e400)"},
+    {"[cloud]\ndensity = 1e300\n", "t.scene:2:11: 'density' must be in [0, 1e+07] cm^-3, got 1e+300"},
+    {"[camera]\nfov = 50\nfov = 60\n", "t.scene:3:1: duplicate key 'fov' in [camera]"},
+    {"[camera]\nzoom = 2\n", "t.scene:2:1: unknown key 'zoom' in [camera]"},
+    {"[weather]\n", "t.scene:1:1: unknown section [weather]"},
+    {"[camera\n", "t.scene:1:1: unterminated section header (missing ']')"},
+    {"fov = 50\n", "t.scene:1:1: key outside any section"},
+    {"[camera]\nfov 50\n", "t.scene:2:1: expected 'key = value' or '[section]'"},
+    {"[camera]\nfov =\n", "t.scene:2:6: 'fov' has no value"},
+    {"[camera]\nfov = 5O\n", "t.scene:2:7: 'fov' expects a number, got '5O'"},
+    {"[cloud]\nphase = rayleigh\n", "t.scene:2:9: 'phase' must be one of cornette-shanks | hg | mie, got 'rayleigh'"},
+    {"[quality]\nsegments = 2.5\n", "t.scene:2:12: 'segments' must be a whole number, got 2.5"},
+    {"[quality]\nsegments = 0\n", "t.scene:2:12: 'segments' must be in [1, 64], got 0"},
+    {"[camera]\nposition = 1 2 3 4\n", "t.scene:2:12: 'position' needs 3 numbers, got more"},
+    {"[camera]\n\x01\x02garbage\n", "t.scene:2:1: not a text file (byte 0x01)"},
+    {"[camera]\nposition = 0 0 0\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 1 1\n",
+     "t.scene: [camera] 'look_at' equals 'position'; the view direction is undefined"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\nradii = 1 1 1\n",
+     "t.scene:6:1: [ellipsoid] #1 has no 'center'"},
+    {"[camera]\n[camera]\n", "t.scene:2:1: section [camera] appears twice"},
+    {"[sun]\nelevation = 91\n", "t.scene:2:13: 'elevation' must be in [-90, 90] degrees, got 91"},
+};
+
+static void test_bad_inputs(void **st)
+{
+    (void)st;
+    int n = (int)(sizeof bad / sizeof bad[0]);
+    assert_true(n >= 15);
+    for (int i = 0; i < n; i++) {
+        cu_scene *s = (cu_scene *)1;
+        cu_error e;
+        memset(&e, 0, sizeof e);
+        int rc = parse(bad[i].text, &s, &e);
+        if (rc == 0 || s != NULL || strcmp(e.msg, bad[i].message) != 0)
+            fail_msg("case %d: rc=%d\n  got:      '%s'\n  expected: '%s'", i, rc, e.msg, bad[i].message);
+    }
+}
+
+static void test_nul_byte_and_truncated_binary(void **st)
+{
+    (void)st;
+    const char t[] = "[camera]\nfov = 5\0\xff\xfe";
+    cu_scene *s;
+    cu_error e;
+    assert_int_not_equal(cu_scene_parse(&s, "t.scene", t, sizeof t - 1, &e), 0);
+    assert_string_equal(e.msg, "t.scene:2:8: not a text file (byte 0x00)");
+    /* a file cut in the middle of a value */
+    const char *u = MIN_SCENE "[quality]\nsegments = 1";
+    assert_int_not_equal(cu_scene_parse(&s, "t.scene", u, strlen(u) - 1, &e), 0);
+    assert_string_equal(e.msg, "t.scene:11:11: 'segments' has no value");
+}
+
+static void test_bad_set(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse(MIN_SCENE, &s, &e), 0);
+    assert_int_not_equal(cu_scene_set(s, "quality.segments", &e), 0);
+    assert_string_equal(e.msg, "--set quality.segments: expected section.key=value");
+    assert_int_not_equal(cu_scene_set(s, "quality.bogus=1", &e), 0);
+    assert_string_equal(e.msg, "--set quality.bogus=1: unknown key 'quality.bogus'");
+    assert_int_not_equal(cu_scene_set(s, "ellipsoid.2.radii=1 1 1", &e), 0);
+    assert_string_equal(e.msg, "--set ellipsoid.2.radii=1 1 1: use ellipsoid.N.key with N from 1 to 1");
+    assert_int_not_equal(cu_scene_set(s, "camera.fov=nan", &e), 0);
+    assert_string_equal(e.msg, "--set camera.fov: 'fov' is NaN");
+    assert_int_not_equal(cu_scene_set(s, "ellipsoid.1.radii=1 1 -1", &e), 0);
+    assert_string_equal(e.msg, "--set ellipsoid.radii: 'radii' must be positive, got -1");
+    /* a failed --set leaves the value unchanged */
+    assert_true(s->ell[0].radii[2] == 3.0);
+    cu_scene_free(s);
+}
+
+static void test_missing_file(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    assert_int_not_equal(cu_scene_load(&s, "no/such.scene", &e), 0);
+    assert_string_equal(e.msg, "no/such.scene: cannot open: No such file or directory");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_good_minimal_and_defaults), cmocka_unit_test(test_good_default_scene_file),
+        cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
+        cmocka_unit_test(test_missing_file),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

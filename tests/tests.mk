@@ -1,0 +1,22 @@
+# tests/: unit tests (cmocka), image tests, physics and stability checks of the engine.
+TEST_CFLAGS := $(CFLAGS_COMMON) $(call pc_cflags,cmocka) $(ENGINE_CFLAGS)
+TEST_LIBS   := $(call pc_libs,cmocka) -lm
+
+$(B)/test_scene: tests/test_scene.c $(B)/libcumulo.a
+	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_scene
+
+$(B)/test_math: tests/test_math.c $(B)/libcumulo.a
+	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_math
+
+HEADLESS_SRCS := platform/egl_surfaceless.c platform/osmesa.c platform/headless_fbo.c
+$(B)/test_render: tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
+	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) \
+	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_render
+
+# Rewrites the reference images from the current renderer (EGL); look at them before committing.
+refs: $(B)/test_render
+	$(TEST_ENV) CUMULO_WRITE_REFS=1 CMOCKA_TEST_ABORT=0 $(B)/test_render
+.PHONY: refs
