@@ -117,15 +117,31 @@ int cu_egl_init(cu_egl *e, EGLenum platform, void *native_display, EGLint visual
      * needed by the camera depth pre-pass when drawing to the window's own framebuffer. */
     static const EGLint depths[] = { 24, 16 };
     EGLConfig configs[256];
-    EGLint n = 0;
-    for (int k = 0; k < 2 && n == 0; k++) {
+    EGLint n = 0, candidates = 0;
+    int found = 0;
+    for (int k = 0; k < 2 && !found; k++) {
         EGLint attr[] = { EGL_SURFACE_TYPE, EGL_WINDOW_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT,
                           EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_DEPTH_SIZE, depths[k],
                           EGL_NONE };
         if (!eglChooseConfig(e->dpy, attr, configs, 256, &n))
             n = 0;
+        candidates += n;
+        /* Scan-out needs the config's pixel format to equal the GBM surface's (kmscube's match_config_to_visual);
+         * windows take the first (best) config. */
+        for (EGLint i = 0; i < n && !found; i++) {
+            EGLint id = 0;
+            if (!visual_id || (eglGetConfigAttrib(e->dpy, configs[i], EGL_NATIVE_VISUAL_ID, &id) && id == visual_id)) {
+                e->cfg = configs[i];
+                found = 1;
+            }
+        }
     }
-    if (n == 0) {
+    if (!found && candidates > 0) {
+        snprintf(err, errlen, "%s: no GLES 3 config matches the scan-out format 0x%08x (%d candidates)", who,
+                 (unsigned)visual_id, (int)candidates);
+        return 1;
+    }
+    if (!found) {
         int es2 = count_configs(e->dpy, EGL_OPENGL_ES2_BIT);
         int es3 = count_configs(e->dpy, EGL_OPENGL_ES3_BIT);
         if (es2 > 0 && es3 == 0) {
@@ -133,31 +149,14 @@ int cu_egl_init(cu_egl *e, EGLenum platform, void *native_display, EGLint visual
             gles2_version(e->dpy, offers, sizeof offers);
             snprintf(err, errlen, "%s: the GPU offers only OpenGL ES 2 (%s; %d window configs with "
                      "EGL_OPENGL_ES2_BIT, none with EGL_OPENGL_ES3_BIT, EGL %d.%d '%s'): cumulo needs OpenGL ES 3.0 "
-                     "(on a Raspberry Pi: Pi 4 or newer, or Pi 2/3 with dtoverlay=vc4-kms-v3d)", who, offers, es2,
-                     e->major, e->minor, eglQueryString(e->dpy, EGL_VENDOR));
+                     "(Raspberry Pi 4 or newer; the VideoCore IV of a Pi 0-3 has OpenGL ES 2 only)", who, offers,
+                     es2, e->major, e->minor, eglQueryString(e->dpy, EGL_VENDOR));
         } else {
             snprintf(err, errlen, "%s: no EGL window config with 8-bit RGB and a depth buffer that renders OpenGL "
                      "ES 3 (%d ES 3 configs in all, EGL %d.%d '%s')", who, es3, e->major, e->minor,
                      eglQueryString(e->dpy, EGL_VENDOR));
         }
         return 1;
-    }
-    e->cfg = configs[0];
-    if (visual_id) {
-        /* Scan-out needs the config's pixel format to equal the GBM surface's (kmscube's match_config_to_visual). */
-        int found = 0;
-        for (EGLint i = 0; i < n && !found; i++) {
-            EGLint id = 0;
-            if (eglGetConfigAttrib(e->dpy, configs[i], EGL_NATIVE_VISUAL_ID, &id) && id == visual_id) {
-                e->cfg = configs[i];
-                found = 1;
-            }
-        }
-        if (!found) {
-            snprintf(err, errlen, "%s: no GLES 3 config matches the scan-out format 0x%08x (%d candidates)", who,
-                     (unsigned)visual_id, (int)n);
-            return 1;
-        }
     }
     const char *ext = eglQueryString(e->dpy, EGL_EXTENSIONS);
     int create_context = (e->major > 1 || e->minor >= 5) || has_ext(ext, "EGL_KHR_create_context");

@@ -97,6 +97,9 @@ else
      grep -q 'Surface: *EGL .*160x120 window on X11' "$OUT/x.out" && grep -q 'frames=3 ' "$OUT/x.out"; then
     t_ok x11_window
   else t_fail x11_window "$(cat "$OUT/x.err" "$OUT/x.out" | tail -3)"; fi
+  # A GLES-2-only device (Mesa capped at ES 2.0): one line saying so and what the device offers.
+  t_expect gles2_only_device 1 "the device offers 'OpenGL ES 2.0" -- \
+    env DISPLAY=:97 MESA_GLES_VERSION_OVERRIDE=2.0 $C run $S --platform x11 --frames 1 --no-stdin
   kill $xpid 2>/dev/null; wait $xpid 2>/dev/null
 fi
 
