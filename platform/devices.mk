@@ -76,5 +76,21 @@ $(B)/test_drm_mode: platform/test_drm_mode.c platform/drm_mode.c platform/drm_mo
 	@mkdir -p $(@D)
 	$(PLATFORM_TEST_CC)
 
+# gpio.c against a scripted fake of libgpiod: the v2 build declares the v2 API itself, so it runs everywhere; the v1
+# build needs the v1 header (libgpiod 1.x installed).
+$(B)/test_gpio_v2: platform/test_gpio.c platform/gpio.c platform/gpio.h platform/quadrature.c platform/input.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_COMMON) -DCU_GPIOD_V2 -Iplatform $(call pc_cflags,cmocka) -o $@ platform/test_gpio.c \
+	  platform/quadrature.c platform/input.c $(call pc_libs,cmocka) $(LDLIBS_COMMON)
+CHECK_TESTS += $(B)/test_gpio_v2
+
+ifeq ($(firstword $(subst ., ,$(GPIOD_VERSION))),1)
+$(B)/test_gpio_v1: platform/test_gpio.c platform/gpio.c platform/gpio.h platform/quadrature.c platform/input.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_COMMON) -Iplatform $(call pc_cflags,cmocka libgpiod) -o $@ platform/test_gpio.c \
+	  platform/quadrature.c platform/input.c $(call pc_libs,cmocka) $(LDLIBS_COMMON)
+CHECK_TESTS += $(B)/test_gpio_v1
+endif
+
 CHECK_TESTS += $(B)/test_quadrature $(B)/test_input $(B)/test_evdev $(B)/test_drm_mode \
                platform/test_run.sh platform/test_gpio_sim.sh platform/test_soak.sh

@@ -3,7 +3,9 @@
 #include "gpio.h"
 #include "quadrature.h"
 #include <errno.h>
+#ifndef CU_TEST_GPIOD_DECLARED /* test_gpio_v2.c declares the v2 API itself to test this file without libgpiod 2 */
 #include <gpiod.h>
+#endif
 #include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
