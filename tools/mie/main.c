@@ -17,6 +17,7 @@ static const char *USAGE =
     "                prints 'theta p' (sr^-1, normalised), g, qext, sigma_ext_um2\n"
     "  engine table: --table FILE [--reff UM --veff V | --monodisperse --radius UM] [--band LO,HI,STEP]\n"
     "options: --m N,K   refractive index n - ik (K >= 0; overrides water)   --dx D  radius step in size parameter\n"
+    "         --tail-stretch S  radius step multiplier past the bulk of the distribution (default 4, 1 = uniform)\n"
     "         --threads T (1-8)   --help\n";
 
 /* Every argument error is one line naming the argument, then exit status 2 (see tools/mie/test_mie_cli.sh). */
@@ -90,7 +91,8 @@ int main(int argc, char **argv)
             continue;
         }
         static const char *const valued[] = {"--reff", "--veff",   "--lambda", "--angles", "--radius", "--m",
-                                             "--x",    "--table", "--dx",     "--band",   "--threads"};
+                                             "--x",    "--table", "--dx",     "--band",   "--threads",
+                                             "--tail-stretch"};
         int known = 0;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             known |= !strcmp(a, valued[k]);
@@ -140,6 +142,9 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--dx")) {
             if (num(v, 1e-3, 1.0, &p.dx))
                 return bad(a, "expected a size-parameter step, 0.001-1", v);
+        } else if (!strcmp(a, "--tail-stretch")) {
+            if (num(v, 1.0, 8.0, &p.tail_stretch))
+                return bad(a, "expected a step multiplier for the large-radius tail, 1-8", v);
         } else if (!strcmp(a, "--band")) {
             if (numlist(v, 200.0, 1100.0, t, 3) != 3 || !(t[1] > t[0]) || !(t[2] > 0.0))
                 return bad(a, "expected LO,HI,STEP in nm with 200 <= LO < HI <= 1100", v);

@@ -10,7 +10,8 @@ typedef struct {
     int monodisperse;     /* 1: every droplet has radius radius_um */
     double radius_um;     /* monodisperse radius */
     double reff_um, veff; /* gamma distribution n(r) ~ r^((1-3v)/v) exp(-r/(reff v)) (Hansen 1971) */
-    double dx;            /* size-parameter step of the radius quadrature (uniform in r at each wavelength) */
+    double dx;            /* size-parameter step of the radius quadrature where the droplets matter */
+    double tail_stretch;  /* step multiplier in the large-radius tail (1 = uniform grid), see mietable.c */
     double lambda_min_nm, lambda_max_nm, dlambda_nm; /* band; min == max means one wavelength, one channel */
     int use_m;            /* 1: use m below instead of water at each wavelength */
     double complex m;     /* Wiscombe convention n - ik */

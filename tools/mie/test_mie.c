@@ -17,10 +17,12 @@
 
 static const double PI = 3.14159265358979323846;
 
-/* Measured dx 0.05 -> 0.025 over the whole 1041-angle table: <= 1.7e-4 where P > 1e-3 of the peak, <= 1.6e-3
- * anywhere (the back hemisphere, where resonance spikes weigh most), <= 2e-5 on sigma_ext, g and f. */
-#define MIE_TOL_FWD 3e-4
-#define MIE_TOL_ALL 3e-3
+/* Measured for the whole 1041-angle default table, dx 0.035 -> 0.0175 (grids not nested, see mietable.c):
+ * <= 2.7e-4 where P > 1e-3 of the peak, <= 4.6e-3 anywhere (glory, where resonance spikes weigh most),
+ * <= 3.3e-5 on sigma_ext and g, <= 8.4e-6 on f. The tolerances below leave about a factor 2. */
+#define MIE_TOL_FWD 5e-4
+#define MIE_TOL_ALL 1e-2
+#define MIE_TOL_SIGMA 1e-4
 
 /* Relative-error assertion that prints both numbers, so a failing log says by how much. */
 #define assert_rel(got, want, tol)                                                                                   \
@@ -367,7 +369,7 @@ static void test_quadrature_convergence(void **state)
                       c, p.dx * 2, p.dx, fwd, all, es, eg);
         assert_true(fwd < MIE_TOL_FWD);
         assert_true(all < MIE_TOL_ALL);
-        assert_true(es < MIE_TOL_FWD && eg < MIE_TOL_FWD);
+        assert_true(es < MIE_TOL_SIGMA && eg < MIE_TOL_SIGMA);
     }
     mt_result_free(&r1);
     mt_result_free(&r2);
