@@ -433,8 +433,8 @@ int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const
         fprintf(out, "# droplets: monodisperse r = %g um\n", p->radius_um);
     else
         fprintf(out, "# droplets: gamma distribution r_eff = %g um, v_eff = %g; radius step dx = %g in size "
-                     "parameter\n",
-                p->reff_um, p->veff, p->dx);
+                     "parameter, x%g past r^4 n(r) < 1e-2 of peak, golden-ratio grid offset per wavelength\n",
+                p->reff_um, p->veff, p->dx, p->tail_stretch);
     fprintf(out, "# spectrum: %g-%g nm every %g nm, equal-energy, linear-sRGB weights from the Wyman-Sloan-Shirley "
                  "CIE fit (negative lobes clipped)\n",
             p->lambda_min_nm, p->lambda_max_nm, p->dlambda_nm);
@@ -442,7 +442,10 @@ int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const
         fprintf(out, "# refractive index: %.6f - %.3ei (fixed)\n", creal(p->m), -cimag(p->m));
     else
         fprintf(out, "# refractive index: water, Daimon-Masumura 2007 (20 degC) n, Hale-Querry 1973 k\n");
-    fprintf(out, "# P(theta) in sr^-1 with integral over the sphere = 1; sigma_ext in um^2 per droplet\n");
+    fprintf(out, "# P(theta) in sr^-1 with integral over the sphere = 1 (composite Simpson on the equal-step runs);"
+                 " sigma_ext in um^2 per droplet\n");
+    fprintf(out, "# angles: 0.05 deg steps on [0, 10] and [170, 180], 0.25 deg on [10, 170]; g from the Mie "
+                 "coefficients; f = integral of P_p = P - P~, P~ = P(8 deg) below 8 deg\n");
     fprintf(out, "# Mie evaluations: %ld\n", r->nsolves);
     (void)seconds; /* the run time goes to stderr and data/mie_cloud.md, so the table is reproducible */
     fprintf(out, "channels 3\n");
