@@ -146,7 +146,7 @@ int main(int argc, char **argv)
             if (num(v, 1.0, 8.0, &p.tail_stretch))
                 return bad(a, "expected a step multiplier for the large-radius tail, 1-8", v);
         } else if (!strcmp(a, "--band")) {
-            if (numlist(v, 200.0, 1100.0, t, 3) != 3 || !(t[1] > t[0]) || !(t[2] > 0.0))
+            if (numlist(v, 1e-3, 1100.0, t, 3) != 3 || !(t[0] >= 200.0) || !(t[1] > t[0]))
                 return bad(a, "expected LO,HI,STEP in nm with 200 <= LO < HI <= 1100", v);
             p.lambda_min_nm = t[0];
             p.lambda_max_nm = t[1];
