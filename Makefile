@@ -18,6 +18,8 @@ pc_libs   = $(shell $(PKG) --libs $(1) 2>/dev/null)
 TEST_ENV := LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=2 MESA_DEBUG=silent \
             EGL_LOG_LEVEL=fatal
 
+PREFIX ?= /usr/local
+
 # Filled by the fragments below.
 ALL_BINS    :=
 CHECK_TESTS :=
@@ -45,7 +47,6 @@ demo: deps-check $(B)/cumulo
 clean:
 	rm -rf $(B)
 
-PREFIX  ?= /usr/local
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/cumulo/scenes $(DESTDIR)$(PREFIX)/share/cumulo/data
 	install -m 755 $(ALL_BINS) $(DESTDIR)$(PREFIX)/bin/

@@ -3,7 +3,8 @@
 // eqs. 3.20-3.22), over the ray's in-cloud intervals in front-to-back order, output premultiplied over the sky.
 //
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
-// NOISE_OCTAVES, PROFILE_KOL, MS_MODE (0 none, 1 octaves, 2 diffusion), MS_OCTAVES, FULLSCREEN (camera inside).
+// NOISE_OCTAVES, PROFILE_KOL, MS_MODE (0 none, 1 octaves, 2 diffusion), MS_OCTAVES, PHASE_PEAK (chopped Mie),
+// FULLSCREEN (camera inside).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
@@ -29,7 +30,11 @@ uniform float u_noise_freq;    // texture tiles per metre
 uniform vec3 u_noise_offset;
 uniform float u_noise_mean[5]; // mean of each mip level, stands in for octaves that are switched off
 uniform sampler3D u_noise;
-uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1)
+uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1);
+                               // row 1: the removed forward peak P_p of a chopped Mie function (eq. 3.65)
+#if PHASE_PEAK
+uniform vec3 u_peak_f;         // weight f of the removed peak per channel (eq. 3.68)
+#endif
 uniform int u_phase_n;
 uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
@@ -136,7 +141,13 @@ float sun_optical_depth(vec3 p, float ke, out vec2 slab)
     float t = max(back - front, 0.0) * 4.0 * u_sun_R;
     slab = vec2(min(l, t), t);
 #endif
+#if PHASE_PEAK
+    // Chopped peak (delta-M): light scattered into the removed forward peak keeps travelling with the sunbeam, so
+    // the beam that lights single scattering with P~ is attenuated by the scaled extinction (1 - f) k_e.
+    return l * ke * (1.0 - u_peak_f.g);
+#else
     return l * ke;
+#endif
 }
 
 #if MS_MODE == 2
@@ -144,23 +155,25 @@ float sun_optical_depth(vec3 p, float ke, out vec2 slab)
 // taken along the sun ray (the slab model of a later stage fits orientation too). Similarity-scaled optical depths
 // t' = (1-g) k_e t; net flux F = T E with the thick-slab transmittance T = (4/3) u(1) / (t'_tot + 1.42),
 // u(1) = 9/7 (VALIDATION.md); the mean diffuse radiance falls linearly to zero at the extrapolated far boundary
-// (0.71 beyond it): J = 3 F (t'_tot - t' + 0.71) / (4 pi). (1 - e^-tau_tot) takes it to zero for thin slabs, where
-// diffusion does not hold. Returns J / E.
+// (0.71 beyond it): J = 3 F (t'_tot - t' + 0.71) / (4 pi). (1 - e^-t'_tot) takes it to zero for thin slabs, where
+// diffusion does not hold and a slab of scaled depth t' scatters about t' of the beam out of the peak: a thin cloud
+// is then lit by single scattering alone, as the adding-doubling reflectances say (tau = 1, g = 0.85: R = 0.042).
+// Returns J / E.
 float diffuse_radiance(vec2 slab)
 {
     float k = u_one_minus_g * u_ke;
     float tp = k * slab.x, tt = k * slab.y;
     float T = min((4.0 / 3.0) * (9.0 / 7.0) / (tt + 1.42), 1.0);
-    return 3.0 * T * (tt - tp + 0.71) / (4.0 * PI) * (1.0 - exp(-u_ke * slab.y));
+    return 3.0 * T * (tt - tp + 0.71) / (4.0 * PI) * (1.0 - exp(-tt));
 }
 #endif
 
-vec3 phase_table(float cos_theta)
+vec3 phase_table(float cos_theta, int row)
 {
     float x = acos(clamp(cos_theta, -1.0, 1.0)) / PI * float(u_phase_n - 1);
     int i = min(int(x), u_phase_n - 2);
     float f = x - float(i);
-    return mix(texelFetch(u_phase, ivec2(i, 0), 0).rgb, texelFetch(u_phase, ivec2(i + 1, 0), 0).rgb, f);
+    return mix(texelFetch(u_phase, ivec2(i, row), 0).rgb, texelFetch(u_phase, ivec2(i + 1, row), 0).rgb, f);
 }
 
 float hg(float g, float mu)
@@ -206,7 +219,7 @@ void main()
 
     // Per-pixel constants: the scattering angle is the same along the ray (parallel sunlight).
     float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
-    vec3 ph0 = phase_table(mu);
+    vec3 ph0 = phase_table(mu, 0);
 #if MS_MODE == 1
     float ph_oct[MS_OCTAVES];
     float bo = 1.0, go = u_ms_g;
@@ -274,6 +287,15 @@ void main()
             seg *= r;
         }
     }
+#if PHASE_PEAK
+    // The removed peak (Kol eqs. 3.66-3.69): light scattered into the forward peak and still on the beam. With the
+    // delta-M extinction (1 - f) k_e of the chopped medium that is e^(-(1-f) tau) - e^(-tau), spread over angles as
+    // P_p / f. Its thin limit is P_p tau, single scattering of the peak, as it must be; Kol's printed form
+    // P_p (e^(-f tau) - e^(-tau)) tends to (1 - f) P_p tau instead, so we do not use it.
+    vec3 pp = phase_table(mu, 1);
+    if (pp.g > 0.0)
+        L += pp / max(u_peak_f, vec3(1e-6)) * (exp(-(1.0 - u_peak_f) * tau) - vec3(exp(-tau)));
+#endif
     float alpha = 1.0 - exp(-tau);
     o_color = vec4(u_sun_irr * L, alpha);
 }

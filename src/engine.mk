@@ -16,7 +16,8 @@ $(B)/obj/gen/shaders.o: $(B)/gen/shaders.c
 
 $(B)/obj/src/%.o: src/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(ENGINE_CFLAGS) $(PLATFORM_CFLAGS) -c $< -o $@
+	$(CC) $(CFLAGS_COMMON) $(ENGINE_CFLAGS) $(PLATFORM_CFLAGS) -DCU_INSTALL_DATA_DIR='"$(PREFIX)/share/cumulo/data"' \
+	    -c $< -o $@
 
 $(B)/obj/platform/%.o: platform/%.c
 	@mkdir -p $(dir $@)

@@ -1,8 +1,10 @@
 /* src/phase.c: analytic phase functions and the tables the shader samples (see phase.h). */
 #include "phase.h"
 #include "vecmath.h"
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 double cu_phase_hg(double g, double mu)
 {
@@ -16,21 +18,200 @@ double cu_phase_cornette_shanks(double g, double mu)
     return 3.0 * (1.0 - g * g) * (1.0 + mu * mu) / (8.0 * CU_PI * (2.0 + g * g) * d * sqrt(d));
 }
 
+static int tfail(cu_error *err, const char *path, int line, const char *what)
+{
+    snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, line, what);
+    return 1;
+}
+
+/* Reads exactly n finite numbers from p; returns the count read or -1 on junk. */
+static int read_numbers(const char *p, double *v, int n)
+{
+    int k = 0;
+    for (;;) {
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (!*p || *p == '\n' || *p == '#')
+            return k;
+        if (k == n)
+            return -1;
+        char *end;
+        errno = 0;
+        v[k] = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(v[k]))
+            return -1;
+        k++;
+        p = end;
+    }
+}
+
+int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
+{
+    memset(t, 0, sizeof *t);
+    FILE *fp = fopen(path, "r");
+    if (!fp) {
+        snprintf(err->msg, sizeof err->msg, "%s: cannot open the Mie table: %s (make it with build/cumulo-mie "
+                                            "--table %s)", path, strerror(errno), path);
+        return 1;
+    }
+    char line[512];
+    int ln = 0, have = 0, nang = -1, got = 0;
+    double chop = -1, lam[3];
+    double *th = NULL, *pv = NULL;
+    int rc = 0;
+    while (fgets(line, sizeof line, fp)) {
+        ln++;
+        if (!strchr(line, '\n') && !feof(fp)) {
+            rc = tfail(err, path, ln, "line too long");
+            break;
+        }
+        const char *p = line;
+        while (*p == ' ' || *p == '\t')
+            p++;
+        if (*p == '#' || *p == '\n' || !*p)
+            continue;
+        if (nang >= 0) { /* angle rows */
+            double v[4];
+            if (got >= nang) {
+                rc = tfail(err, path, ln, "more angle rows than 'angles' says");
+                break;
+            }
+            if (read_numbers(p, v, 4) != 4) {
+                rc = tfail(err, path, ln, "angle row needs 4 finite numbers: theta_deg P_r P_g P_b");
+                break;
+            }
+            if (v[0] < 0 || v[0] > 180 || (got > 0 && v[0] <= th[got - 1]) || (got == 0 && v[0] != 0) ||
+                v[1] < 0 || v[2] < 0 || v[3] < 0) {
+                rc = tfail(err, path, ln, "angles must rise from 0 to 180 degrees and P must be >= 0");
+                break;
+            }
+            th[got] = v[0];
+            for (int c = 0; c < 3; c++)
+                pv[3 * got + c] = v[1 + c];
+            got++;
+            continue;
+        }
+        char key[32];
+        int klen = 0;
+        while (p[klen] && p[klen] != ' ' && p[klen] != '\t' && p[klen] != '\n' && klen < 31)
+            klen++;
+        memcpy(key, p, (size_t)klen);
+        key[klen] = 0;
+        const char *rest = p + klen;
+        double v[3];
+        if (strcmp(key, "channels") == 0) {
+            if (read_numbers(rest, v, 1) != 1 || v[0] != 3) { rc = tfail(err, path, ln, "'channels' must be 3"); break; }
+        } else if (strcmp(key, "lambda_nm") == 0) {
+            if (read_numbers(rest, lam, 3) != 3) { rc = tfail(err, path, ln, "'lambda_nm' needs 3 numbers"); break; }
+            have |= 1;
+        } else if (strcmp(key, "sigma_ext_um2") == 0) {
+            if (read_numbers(rest, v, 3) != 3 || v[0] <= 0 || v[1] <= 0 || v[2] <= 0) {
+                rc = tfail(err, path, ln, "'sigma_ext_um2' needs 3 positive numbers");
+                break;
+            }
+            memcpy(t->sigma_ext_um2, v, sizeof v);
+            have |= 2;
+        } else if (strcmp(key, "g") == 0) {
+            if (read_numbers(rest, v, 3) != 3) { rc = tfail(err, path, ln, "'g' needs 3 numbers"); break; }
+            have |= 4;
+        } else if (strcmp(key, "chop_deg") == 0) {
+            if (read_numbers(rest, v, 1) != 1 || v[0] <= 0 || v[0] >= 90) {
+                rc = tfail(err, path, ln, "'chop_deg' must be in (0, 90)");
+                break;
+            }
+            chop = v[0];
+        } else if (strcmp(key, "f") == 0) {
+            if (read_numbers(rest, v, 3) != 3) { rc = tfail(err, path, ln, "'f' needs 3 numbers"); break; }
+            have |= 8;
+        } else if (strcmp(key, "angles") == 0) {
+            if (read_numbers(rest, v, 1) != 1 || v[0] < 2 || v[0] > 1e6 || v[0] != floor(v[0])) {
+                rc = tfail(err, path, ln, "'angles' must be a count from 2 to 1000000");
+                break;
+            }
+            nang = (int)v[0];
+            th = malloc(sizeof(double) * (size_t)nang);
+            pv = malloc(sizeof(double) * 3 * (size_t)nang);
+            if (!th || !pv) { rc = tfail(err, path, ln, "out of memory"); break; }
+        } else {
+            char msg[80];
+            snprintf(msg, sizeof msg, "unknown key '%.31s'", key);
+            rc = tfail(err, path, ln, msg);
+            break;
+        }
+    }
+    fclose(fp);
+    if (!rc && (have != 15 || chop < 0 || nang < 0))
+        rc = tfail(err, path, ln, "incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles");
+    if (!rc && got != nang)
+        rc = tfail(err, path, ln, "fewer angle rows than 'angles' says (truncated file?)");
+    if (!rc && th[nang - 1] != 180)
+        rc = tfail(err, path, ln, "the last angle row must be 180 degrees");
+    if (rc) {
+        free(th);
+        free(pv);
+        return 1;
+    }
+    /* Resample onto the engine's uniform grid (linear in theta; the table is at least as fine everywhere), then
+     * chop: P~ = P(chop) below the chop angle (eq. 3.64), P_p = P - P~ (eq. 3.65). */
+    t->n = CU_PHASE_N;
+    t->rgb = malloc(sizeof(float) * 3 * (size_t)t->n);
+    t->peak = malloc(sizeof(float) * 3 * (size_t)t->n);
+    double *full = malloc(sizeof(double) * 3 * (size_t)t->n);
+    if (!t->rgb || !t->peak || !full) {
+        free(th); free(pv); free(full);
+        cu_phase_table_free(t);
+        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        return 1;
+    }
+    int j = 0;
+    for (int i = 0; i < t->n; i++) {
+        double deg = 180.0 * i / (t->n - 1);
+        while (j < nang - 2 && th[j + 1] < deg)
+            j++;
+        double u = (deg - th[j]) / (th[j + 1] - th[j]);
+        u = u < 0 ? 0 : u > 1 ? 1 : u;
+        for (int c = 0; c < 3; c++)
+            full[3 * i + c] = pv[3 * j + c] + u * (pv[3 * (j + 1) + c] - pv[3 * j + c]);
+    }
+    int ichop = (int)ceil(chop / 180.0 * (t->n - 1));
+    for (int i = 0; i < t->n; i++)
+        for (int c = 0; c < 3; c++) {
+            double chopped = i < ichop ? full[3 * ichop + c] : full[3 * i + c];
+            t->rgb[3 * i + c] = (float)chopped;
+            t->peak[3 * i + c] = (float)(full[3 * i + c] - chopped > 0 ? full[3 * i + c] - chopped : 0);
+        }
+    /* g of the full function and f = integral of P_p, both on the engine's grid (trapezoid in theta). */
+    double h = CU_PI / (t->n - 1);
+    for (int c = 0; c < 3; c++) {
+        double s0 = 0, s1 = 0, sp = 0;
+        for (int i = 0; i < t->n; i++) {
+            double w = (i == 0 || i == t->n - 1) ? 0.5 : 1.0, st = sin(h * i) * w * h * 2 * CU_PI;
+            s0 += full[3 * i + c] * st;
+            s1 += full[3 * i + c] * st * cos(h * i);
+            sp += t->peak[3 * i + c] * st;
+        }
+        t->g_full[c] = s1 / s0;
+        t->f[c] = sp;
+    }
+    free(th);
+    free(pv);
+    free(full);
+    cu_phase_table_moments(t);
+    return 0;
+}
+
 int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_dir, cu_error *err)
 {
-    (void)data_dir;
+    if (s->phase == CU_PHASE_MIE) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/mie_cloud.tbl", data_dir);
+        return cu_phase_table_load_mie(t, path, err);
+    }
+    memset(t, 0, sizeof *t);
     t->n = CU_PHASE_N;
     t->rgb = malloc(sizeof(float) * 3 * (size_t)t->n);
     if (!t->rgb) {
         snprintf(err->msg, sizeof err->msg, "phase table: out of memory");
-        return 1;
-    }
-    if (s->phase == CU_PHASE_MIE) {
-        free(t->rgb);
-        t->rgb = NULL;
-        snprintf(err->msg, sizeof err->msg,
-                 "%s: phase = mie needs the Mie table, which this build does not load yet; use hg or cornette-shanks",
-                 s->name);
         return 1;
     }
     for (int i = 0; i < t->n; i++) {
@@ -39,6 +220,8 @@ int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_
         t->rgb[3 * i] = t->rgb[3 * i + 1] = t->rgb[3 * i + 2] = (float)p;
     }
     cu_phase_table_moments(t);
+    for (int c = 0; c < 3; c++)
+        t->g_full[c] = t->mean_cos[c];
     return 0;
 }
 
@@ -60,5 +243,7 @@ void cu_phase_table_moments(cu_phase_table *t)
 void cu_phase_table_free(cu_phase_table *t)
 {
     free(t->rgb);
+    free(t->peak);
     t->rgb = NULL;
+    t->peak = NULL;
 }

@@ -8,7 +8,11 @@
 
 typedef struct cu_phase_table {
     int n;
-    float *rgb;     /* n * 3 values, sr^-1, normalised: integral over the sphere = 1 */
+    float *rgb;     /* n * 3 values, sr^-1: the phase function, chopped below chop_deg for Mie (P~, eq. 3.64) */
+    float *peak;    /* n * 3 values: the removed peak P_p = P - P~ (eq. 3.65); NULL for analytic phases */
+    double f[3];         /* weight of the removed peak, integral of P_p (eq. 3.68); 0 for analytic phases */
+    double sigma_ext_um2[3]; /* extinction cross-section per droplet from the table; 0 = use 2 pi r_e^2 */
+    double g_full[3];    /* <cos theta> of the full phase function (with the peak) */
     double integral[3];  /* 2 pi * integral of p sin(theta) dtheta: 1 up to the quadrature error */
     double mean_cos[3];  /* <cos theta>, the g used for similarity scaling */
 } cu_phase_table;
@@ -19,5 +23,8 @@ void cu_phase_table_moments(cu_phase_table *t);
 double cu_phase_hg(double g, double cos_theta);
 double cu_phase_cornette_shanks(double g, double cos_theta);
 int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_dir, cu_error *err);
+/* Reads a Mie table (format in tools/mie; written by build/cumulo-mie --table) and resamples it onto the engine's
+ * grid, split into P~ and P_p at the table's chop angle. Errors name file:line. */
+int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err);
 void cu_phase_table_free(cu_phase_table *t);
 #endif

@@ -176,23 +176,29 @@ static int upload_phase(cu_renderer *r, cu_error *err)
     cu_phase_table t;
     if (cu_phase_table_build(&t, &r->scene, r->desc.data_dir ? r->desc.data_dir : "data", err))
         return 1;
-    r->phase_g_eff = t.mean_cos[1];
-    float *rgba = malloc(sizeof(float) * 4 * (size_t)t.n);
+    r->phase_g_eff = t.g_full[1];
+    for (int c = 0; c < 3; c++)
+        r->peak_f[c] = t.f[c];
+    /* The table's extinction cross-section wins over 2 pi r_e^2 (DESIGN.md). One scalar extinction keeps opacity a
+     * scalar for premultiplied blending; the channels' sigma_ext differ by ~1%, so green stands for all three. */
+    if (t.sigma_ext_um2[1] > 0)
+        r->cloud.ke = r->scene.density_cm3 * 1e6 * t.sigma_ext_um2[1] * 1e-12;
+    float *rgba = calloc(4 * 2 * (size_t)t.n, sizeof(float));
     if (!rgba) {
         cu_phase_table_free(&t);
         return fail(err, "phase: out of memory");
     }
-    for (int i = 0; i < t.n; i++) {
-        rgba[4 * i] = t.rgb[3 * i];
-        rgba[4 * i + 1] = t.rgb[3 * i + 1];
-        rgba[4 * i + 2] = t.rgb[3 * i + 2];
-        rgba[4 * i + 3] = 0;
-    }
-    /* RGBA32F fetched with texelFetch and interpolated in the shader: exact values, no fp16 range limit (the Mie
-     * forward peak reaches hundreds of sr^-1), and no need for OES_texture_float_linear. */
+    for (int i = 0; i < t.n; i++)
+        for (int c = 0; c < 3; c++) {
+            rgba[4 * i + c] = t.rgb[3 * i + c];
+            rgba[4 * (t.n + i) + c] = t.peak ? t.peak[3 * i + c] : 0.0f;
+        }
+    /* Row 0: the (chopped) phase function, row 1: the removed peak. RGBA32F fetched with texelFetch and interpolated
+     * in the shader: exact values, no fp16 range limit (the Mie peak reaches hundreds of sr^-1), and no need for
+     * OES_texture_float_linear. */
     gl->GenTextures(1, &r->phase_tex);
     gl->BindTexture(GL_TEXTURE_2D, r->phase_tex);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.n, 1, 0, GL_RGBA, GL_FLOAT, rgba);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.n, 2, 0, GL_RGBA, GL_FLOAT, rgba);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     free(rgba);
@@ -261,10 +267,10 @@ static int build_programs(cu_renderer *r, cu_error *err)
     snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
-             "#define SKY_CONSTANT %d\n",
+             "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
              s->profile == CU_PROFILE_KOL, (int)s->ms_mode, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
-             s->sky_model == CU_SKY_CONSTANT);
+             s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE);
     char fs_defs[1100], hull_defs[1100], lin[1100], back_defs[1100];
     snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n#define SUN_BACK 0\n", defs);
     snprintf(back_defs, sizeof back_defs, "%s#define FULLSCREEN 0\n#define SUN_BACK 1\n", defs);
@@ -506,6 +512,8 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_back"), 3);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_one_minus_g"), (float)(1.0 - r->phase_g_eff));
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
+                  (float)r->peak_f[2]);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase_n"), CU_PHASE_N);
     vec3 sd = r->sky.sun_dir;
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_dir"), (float)sd.x, (float)sd.y, (float)sd.z);

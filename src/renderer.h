@@ -30,6 +30,7 @@ struct cu_renderer {
     int need_sun_back;
     double white[3];                   /* white balance of the tone mapper (sky.h) */
     double phase_g_eff;                /* mean cosine of the phase function in use */
+    double peak_f[3];                  /* weight of the chopped Mie peak per channel (0: analytic phase) */
     int sun_size;
     int sun_dirty;
     vec3 sun_right, sun_up;

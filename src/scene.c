@@ -92,7 +92,7 @@ void cu_scene_defaults(cu_scene *s)
     s->droplet_radius_um = 6;
     s->boundary_m = 62;
     s->noise_scale = 1;
-    s->phase = CU_PHASE_CORNETTE_SHANKS;
+    s->phase = CU_PHASE_MIE;
     s->phase_g = 0.86;
     s->profile = CU_PROFILE_TAPERED;
     s->segments = 5;

@@ -22,7 +22,7 @@ static const char *const backend_names[] = {"egl", "osmesa"};
 #define BEER_SCENE                                                                                        \
     "[output]\nsize = 160 120\n[camera]\nposition = 40 230 -900\nlook_at = 10 260 0\nfov = 40\n"      \
     "[sun]\nelevation = 30\nirradiance = 0 0 0\n[sky]\nmodel = constant\ncolor = 1 1 1\n"              \
-    "[cloud]\ndensity = 20\nboundary = 0\n[quality]\nnoise = off\nsegments = 3\n"                     \
+    "[cloud]\ndensity = 20\nboundary = 0\nphase = hg\ng = 0.85\n[quality]\nnoise = off\nsegments = 3\n"                     \
     "[ellipsoid]\ncenter = 0 250 0\nradii = 200 120 160\n"
 
 /* Direction through the centre of pixel (x, y) (y = 0 at the top), as the renderer's camera defines it. */
@@ -212,6 +212,17 @@ static void test_no_nan_in_any_scene(void **st)
     }
 }
 
+static double band_mean(const double *sum, const int *cnt, double a, double b)
+{
+    double s = 0;
+    int n = 0;
+    for (int i = (int)(a * 2.0); i < (int)(b * 2.0) && i <= 360; i++) {
+        s += sum[i];
+        n += cnt[i];
+    }
+    return n ? s / n : 0;
+}
+
 static double mean_abs_diff(const float *a, const float *b, long n)
 {
     double s = 0;
@@ -323,12 +334,64 @@ static void test_reference_images(void **st)
     }
 }
 
+static void test_glory_and_fogbow(void **st)
+{
+    (void)st;
+    /* A thin cloud seen around the antisolar point with the Mie table: radiance against the scattering angle must
+     * rise into the glory at 180 degrees and peak in the fogbow near 140 degrees (Kol Fig. 4.9-4.10). */
+    const int W = 320, H = 240;
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1) || tr_render(&c, "scenes/glory.scene", NULL))
+        fail_msg("%s", c.err);
+    float *px = malloc(sizeof(float) * 3 * (size_t)W * H);
+    tr_read_rgbf(&c, px);
+    tr_close(&c);
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(cu_scene_load(&s, "scenes/glory.scene", &e), 0);
+    vec3 sun = cu_sun_direction(s->sun_elevation, s->sun_azimuth);
+    double sum[361] = {0};
+    int cnt[361] = {0};
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            vec3 d = pixel_dir(s, W, H, x, y);
+            /* cos(Theta) = s_L . v with s_L = -sun, v = -d (from the sample toward the eye) */
+            double th = acos(fmax(-1.0, fmin(1.0, v3_dot(sun, d)))) * 180.0 / CU_PI;
+            int b = (int)(th * 2.0);
+            const float *p = px + ((size_t)y * W + x) * 3;
+            sum[b] += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            cnt[b]++;
+        }
+    /* mean luminance over [a, b) degrees */
+#define BAND(a, b) band_mean(sum, cnt, (a), (b))
+    double glory = BAND(179.0, 180.1), below_glory = BAND(172.0, 176.0);
+    double best = 0, best_th = 0;
+    for (double t = 130.0; t < 152.0; t += 0.5) {
+        double v = BAND(t, t + 1.0);
+        if (v > best) {
+            best = v;
+            best_th = t + 0.5;
+        }
+    }
+    double inside = BAND(150.0, 158.0), outside = BAND(122.0, 128.0);
+    printf("glory: mean luminance %.3f at 179-180 deg vs %.3f at 172-176 deg\n", glory, below_glory);
+    printf("fogbow: peak %.3f at %.1f deg vs %.3f at 150-158 deg and %.3f at 122-128 deg\n", best, best_th, inside,
+           outside);
+    assert_true(glory > 1.05 * below_glory);
+    assert_true(best_th > 134 && best_th < 146);
+    assert_true(best > 1.02 * inside && best > 1.02 * outside);
+#undef BAND
+    free(px);
+    cu_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_beer_lambert_chords),   cmocka_unit_test(test_overlap_integrated_once),
         cmocka_unit_test(test_empty_scene_is_sky),    cmocka_unit_test(test_no_nan_in_any_scene),
         cmocka_unit_test(test_camera_into_cloud_is_continuous), cmocka_unit_test(test_reference_images),
+        cmocka_unit_test(test_glory_and_fogbow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -42,7 +42,7 @@ static void test_good_default_scene_file(void **st)
         fail_msg("%s", e.msg);
     assert_int_equal(s->n_ellipsoids, 8);
     assert_true(s->cam_pos[2] == -1200.0 && s->sun_azimuth == 135.0 && s->boundary_m == 62.0);
-    assert_int_equal(s->phase, CU_PHASE_CORNETTE_SHANKS);
+    assert_int_equal(s->phase, CU_PHASE_MIE);
     cu_scene_free(s);
 }
 

@@ -6,6 +6,10 @@ $(B)/test_scene: tests/test_scene.c $(B)/libcumulo.a
 	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_scene
 
+$(B)/test_phase: tests/test_phase.c $(B)/libcumulo.a
+	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_phase
+
 $(B)/test_math: tests/test_math.c $(B)/libcumulo.a
 	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_math
@@ -20,3 +24,5 @@ CHECK_TESTS += $(B)/test_render
 refs: $(B)/test_render
 	$(TEST_ENV) CUMULO_WRITE_REFS=1 CMOCKA_TEST_ABORT=0 $(B)/test_render
 .PHONY: refs
+
+CHECK_TESTS += tests/test_cli.sh

@@ -4,6 +4,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+#ifndef CU_INSTALL_DATA_DIR
+#define CU_INSTALL_DATA_DIR "/usr/local/share/cumulo/data"
+#endif
 
 static void log_to_stderr(void *user, cu_log_level level, const char *msg)
 {
@@ -102,6 +107,12 @@ int cli_session_open(cli_session *s, const cli_opts *o)
     d.get_proc_user = s;
     d.log = log_to_stderr;
     d.log_user = &verbose;
+    /* Tables: $CUMULO_DATA_DIR, else ./data (a source tree), else where `make install` put them. */
+    const char *dd = getenv("CUMULO_DATA_DIR");
+    struct stat sb;
+    if (!dd)
+        dd = stat("data/mie_cloud.tbl", &sb) == 0 ? "data" : CU_INSTALL_DATA_DIR;
+    d.data_dir = dd;
     if (cu_renderer_create(&s->r, &d, &e) || cu_renderer_set_scene(s->r, s->scene, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;

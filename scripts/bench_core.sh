@@ -1,0 +1,19 @@
+#!/bin/sh
+# Measures what the README reports for the core engine: frame time of the default scene at 640x480, how it grows
+# with the number of ellipsoids (8, 16, 32 in one cloud) and with segments (2, 5, 10, 20). All variants run in one
+# invocation, so compare them as ratios. Writes build/bench/core.csv and prints the glmark2-style lines.
+set -eu
+C=${CUMULO:-build/cumulo}
+FRAMES=${FRAMES:-20}
+export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=${LP_NUM_THREADS:-2}
+mkdir -p build/bench
+CSV=build/bench/core.csv
+rm -f "$CSV"
+b() { "$C" bench "$@" --frames "$FRAMES" --warmup 3 --csv "$CSV" | grep '^\['; }
+"$C" bench scenes/cumulus.scene --frames 1 --warmup 0 | sed -n '2,9p'
+b scenes/cumulus.scene
+for n in 8 16 32; do b "scenes/bench_e$n.scene"; done
+for s in 2 5 10 20; do b scenes/bench_e8.scene --set "quality.segments=$s"; done
+b scenes/bench_e8.scene --set ms.mode=none
+b scenes/bench_e8.scene --set quality.noise=off
+b scenes/bench_e8.scene --sun-every-frame

@@ -1,0 +1,121 @@
+/* tests/test_phase.c: the engine's phase tables: analytic ones against closed forms (normalisation, mean cosine,
+ * VALIDATION.md values), the committed Mie table as loaded and chopped (eqs. 3.64-3.68), and the table parser on
+ * hostile files with exact messages. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "phase.h"
+#include "vecmath.h"
+
+static void test_closed_forms(void **st)
+{
+    (void)st;
+    /* VALIDATION.md: HG g = 0.85: p(0) = 6.54304, p(pi) = 0.003488 */
+    assert_true(fabs(cu_phase_hg(0.85, 1.0) - 6.54304) < 1e-5);
+    assert_true(fabs(cu_phase_hg(0.85, -1.0) - 0.003488) < 1e-6);
+    cu_scene s;
+    cu_scene_defaults(&s);
+    cu_error e;
+    const double gs[] = {0.0, 0.5, 0.86};
+    for (int i = 0; i < 3; i++) {
+        for (int m = 0; m < 2; m++) {
+            s.phase = m ? CU_PHASE_HG : CU_PHASE_CORNETTE_SHANKS;
+            s.phase_g = gs[i];
+            cu_phase_table t;
+            assert_int_equal(cu_phase_table_build(&t, &s, "data", &e), 0);
+            double g = gs[i];
+            double expect = m ? g : 3 * g * (4 + g * g) / (5 * (2 + g * g)); /* CS mean cosine, VALIDATION.md */
+            printf("%s g=%.2f: integral %.6f, mean cosine %.6f (closed form %.6f)\n", m ? "HG" : "CS", g,
+                   t.integral[1], t.mean_cos[1], expect);
+            assert_true(fabs(t.integral[1] - 1.0) < 1e-4); /* trapezoid on 2048 angles */
+            assert_true(fabs(t.mean_cos[1] - expect) < 1e-4);
+            assert_null(t.peak);
+            cu_phase_table_free(&t);
+        }
+    }
+}
+
+static void test_committed_mie_table(void **st)
+{
+    (void)st;
+    cu_phase_table t;
+    cu_error e;
+    if (cu_phase_table_load_mie(&t, "data/mie_cloud.tbl", &e))
+        fail_msg("%s", e.msg);
+    for (int c = 0; c < 3; c++) {
+        /* the chopped function integrates to 1 - f and the peak to f (eqs. 3.64-3.68) */
+        printf("channel %d: integral(P~) = %.5f, f = %.5f, sum %.5f, g = %.5f, sigma_ext = %.2f um^2\n", c,
+               t.integral[c], t.f[c], t.integral[c] + t.f[c], t.g_full[c], t.sigma_ext_um2[c]);
+        assert_true(fabs(t.integral[c] + t.f[c] - 1.0) < 2e-3);
+        assert_true(t.f[c] > 0.3 && t.f[c] < 0.6);
+        assert_true(t.g_full[c] > 0.8 && t.g_full[c] < 0.9);
+        for (int i = 0; i < t.n; i++) {
+            assert_true(t.peak[3 * i + c] >= 0.0f && t.rgb[3 * i + c] > 0.0f);
+            if (i * 180.0 / (t.n - 1) >= 8.0 + 0.1)
+                assert_true(t.peak[3 * i + c] == 0.0f);
+        }
+        /* P~ is flat below the chop angle */
+        assert_true(t.rgb[c] == t.rgb[3 * 50 + c]);
+    }
+    cu_phase_table_free(&t);
+}
+
+typedef struct bad_table {
+    const char *text;
+    const char *message;
+} bad_table;
+
+#define HEAD "channels 3\nlambda_nm 600 540 450\nsigma_ext_um2 173 173 172\ng 0.85 0.85 0.86\nchop_deg 8\nf 0.44 0.45 0.46\n"
+
+static const bad_table bad[] = {
+    {"", "t.tbl:0: incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles"},
+    {HEAD "angles 3\n0 1 1 1\n90 1 1 1\n", "t.tbl:9: fewer angle rows than 'angles' says (truncated file?)"},
+    {HEAD "angles 2\n0 1 1 1\n90 1 1 1\n", "t.tbl:9: the last angle row must be 180 degrees"},
+    {HEAD "angles 2\n0 nan 1 1\n180 1 1 1\n", "t.tbl:8: angle row needs 4 finite numbers: theta_deg P_r P_g P_b"},
+    {HEAD "angles 2\n0 1 1\n180 1 1 1\n", "t.tbl:8: angle row needs 4 finite numbers: theta_deg P_r P_g P_b"},
+    {HEAD "angles 3\n0 1 1 1\n90 1 1 1\n45 1 1 1\n", "t.tbl:10: angles must rise from 0 to 180 degrees and P must be >= 0"},
+    {HEAD "angles 2\n0 1 -1 1\n180 1 1 1\n", "t.tbl:8: angles must rise from 0 to 180 degrees and P must be >= 0"},
+    {HEAD "angles 2\n0 1 1 1\n180 1 1 1\n180 1 1 1\n", "t.tbl:10: more angle rows than 'angles' says"},
+    {"channels 4\n", "t.tbl:1: 'channels' must be 3"},
+    {"colour 1 2 3\n", "t.tbl:1: unknown key 'colour'"},
+    {"sigma_ext_um2 1 0 1\n", "t.tbl:1: 'sigma_ext_um2' needs 3 positive numbers"},
+    {"chop_deg 95\n", "t.tbl:1: 'chop_deg' must be in (0, 90)"},
+    {"angles 1e9\n", "t.tbl:1: 'angles' must be a count from 2 to 1000000"},
+    {"g 0.8 0.8\n", "t.tbl:1: 'g' needs 3 numbers"},
+};
+
+static void test_hostile_tables(void **st)
+{
+    (void)st;
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        FILE *f = fopen("build/test-output/t.tbl", "w");
+        assert_non_null(f);
+        fputs(bad[i].text, f);
+        fclose(f);
+        cu_phase_table t;
+        cu_error e;
+        memset(&e, 0, sizeof e);
+        int rc = cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e);
+        const char *msg = strstr(e.msg, "t.tbl:");
+        if (rc == 0 || !msg || strcmp(msg, bad[i].message) != 0)
+            fail_msg("case %zu: rc %d\n got      '%s'\n expected '%s'", i, rc, e.msg, bad[i].message);
+    }
+    cu_phase_table t;
+    cu_error e;
+    assert_int_not_equal(cu_phase_table_load_mie(&t, "build/test-output/none.tbl", &e), 0);
+    assert_non_null(strstr(e.msg, "cannot open the Mie table"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_closed_forms),
+        cmocka_unit_test(test_committed_mie_table),
+        cmocka_unit_test(test_hostile_tables),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
