@@ -13,22 +13,24 @@ static void die(const char *m)
 int main(int argc, char **argv)
 {
     const char *out = NULL;
-    int models[2] = { 1, 1 }, holdout = 0, nfiles = 0;
+    int models[3] = { 1, 1, 1 }, holdout = 0, nfiles = 0;
     double frac = 0.01;
     cu_cell *cells = NULL;
     int n = 0;
     char msg[512];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
-            printf("usage: cumulo-slab-fit [--model bouthors|logsep|both] [--holdout] [--frac F] [--out PREFIX] TABLE...\n"
+            printf("usage: cumulo-slab-fit [--model bouthors|logsep|logsep2|all] [--holdout] [--frac F] [--out PREFIX] TABLE...\n"
                    "Fits per (group, thickness); --holdout trains on phi_V != 90 and reports errors on phi_V = 90.\n");
             return 0;
         } else if (!strcmp(argv[i], "--model") && i + 1 < argc) {
             const char *m = argv[++i];
-            if (!strcmp(m, "bouthors")) { models[0] = 1; models[1] = 0; }
-            else if (!strcmp(m, "logsep")) { models[0] = 0; models[1] = 1; }
-            else if (!strcmp(m, "both")) { models[0] = models[1] = 1; }
-            else die("--model must be bouthors, logsep or both");
+            models[0] = models[1] = models[2] = 0;
+            if (!strcmp(m, "bouthors")) models[0] = 1;
+            else if (!strcmp(m, "logsep")) models[1] = 1;
+            else if (!strcmp(m, "logsep2")) models[2] = 1;
+            else if (!strcmp(m, "all") || !strcmp(m, "both")) models[0] = models[1] = models[2] = 1;
+            else die("--model must be bouthors, logsep, logsep2 or all");
         } else if (!strcmp(argv[i], "--holdout")) holdout = 1;
         else if (!strcmp(argv[i], "--frac") && i + 1 < argc) frac = atof(argv[++i]);
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
@@ -57,9 +59,9 @@ int main(int argc, char **argv)
     static const char *gname[] = { "", "1", "2", "3", "4", "5-6", "7-9", "10-15", "16+" };
     printf("# cumulo-slab-fit: %d rows from %d table(s), %d thicknesses; relative error |M-C|/C over cells with C > %.3g * max "
            "of the (group, t) slice%s\n", n, nfiles, nt, frac, holdout ? "; training phi_V != 90, held-out phi_V = 90" : "");
-    for (int mdl = 0; mdl < 2; mdl++) {
+    for (int mdl = 0; mdl < 3; mdl++) {
         if (!models[mdl]) continue;
-        const char *mname = mdl == CU_MODEL_BOUTHORS ? "bouthors" : "logsep";
+        const char *mname = mdl == CU_MODEL_BOUTHORS ? "bouthors" : mdl == CU_MODEL_LOGSEP ? "logsep" : "logsep2";
         FILE *fo = NULL;
         if (out) {
             char path[4096];
@@ -68,7 +70,8 @@ int main(int argc, char **argv)
             fprintf(fo, "# %s fit of cumulo-slab C tables (C = I/F_sun, sr^-1; lengths in metres). %s\n", mname,
                     mdl == CU_MODEL_BOUTHORS ? "C = P*(Theta) A1*(thV) A2*(thL) cos thL log^2(d+D*)/log^2(B*+D*) "
                                               "exp(-(d-B*)^2/(2 C*^2)), B* = B1*(thV) - B2*(thL)  (eq. 3.32)"
-                                            : "C = cos thL P*(Theta) H(d/t, thV) K(d/t, thL), linear in d between rows");
+                                            : mdl == CU_MODEL_LOGSEP ? "C = cos thL P*(Theta) H(d/t, thV) K(d/t, thL), log-linear in d between rows"
+                                            : "C = cos thL P*(Theta, d/t) H(d/t, thV) K(d/t, thL), log-linear in d between rows");
             fprintf(fo, "# name group t_m node value\n");
         }
         printf("\n## model %s\n# group  t_m  cells  median_rel  p90_rel  mc_noise_median%s  lm_iter status\n", mname,

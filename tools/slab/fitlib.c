@@ -72,15 +72,23 @@ static int off_b1(const cu_fit *f) { return CU_FIT_NTH + f->nv + f->nl; }
 static int off_b2(const cu_fit *f) { return CU_FIT_NTH + 2 * f->nv + f->nl; }
 static int off_c(const cu_fit *f) { return CU_FIT_NTH + 2 * f->nv + 2 * f->nl; }
 static int off_d(const cu_fit *f) { return CU_FIT_NTH + 3 * f->nv + 2 * f->nl; }
-static int off_h(const cu_fit *f) { (void)f; return CU_FIT_NTH; }
-static int off_k(const cu_fit *f) { return CU_FIT_NTH + f->nd * f->nv; }
+static int prow(const cu_fit *f) { return f->model == CU_MODEL_LOGSEP2 ? f->nd : 1; }
+static int off_h(const cu_fit *f) { return CU_FIT_NTH * prow(f); }
+static int off_k(const cu_fit *f) { return CU_FIT_NTH * prow(f) + f->nd * f->nv; }
 
-static double logp(const cu_fit *f, double cosT)
+static double theta_w(double cosT, int *i0)
 {
     double T = acos(fmax(-1.0, fmin(1.0, cosT))) / DEG / 15.0;
     int i = (int)T;
     if (i >= CU_FIT_NTH - 1) i = CU_FIT_NTH - 2;
-    double w = T - i;
+    *i0 = i;
+    return T - i;
+}
+
+static double logp(const cu_fit *f, double cosT)
+{
+    int i;
+    double w = theta_w(cosT, &i);
     return f->par[i] * (1 - w) + f->par[i + 1] * w;
 }
 
@@ -114,6 +122,12 @@ double cu_fit_eval(const cu_fit *f, double d, double thv, double phv, double thl
     int i1 = f->nd > 1 ? i0 + 1 : 0;
     double h = (1 - w) * p[off_h(f) + i0 * f->nv + iv] + w * p[off_h(f) + i1 * f->nv + iv];
     double k = (1 - w) * p[off_k(f) + i0 * f->nl + il] + w * p[off_k(f) + i1 * f->nl + il];
+    if (f->model == CU_MODEL_LOGSEP2) {
+        int it;
+        double wt = theta_w(cos_scat(thv, phv, thl), &it);
+        const double *r0 = p + i0 * CU_FIT_NTH, *r1 = p + i1 * CU_FIT_NTH;
+        lp = (1 - w) * ((1 - wt) * r0[it] + wt * r0[it + 1]) + w * ((1 - wt) * r1[it] + wt * r1[it + 1]);
+    }
     return mu * exp(lp + h + k);
 }
 
@@ -123,6 +137,7 @@ typedef struct {
     int n;
     int *fix;         /* 1 = parameter held fixed */
     int *map;         /* free index -> full index */
+    int *inv;         /* full index -> free index or -1 */
     double wfloor;    /* residual scale floor: 1 % of the slice maximum */
 } ctx_t;
 
@@ -142,6 +157,61 @@ static int resid(const gsl_vector *v, void *data, gsl_vector *r)
         double m = cu_fit_eval(x->f, c->d, c->thv, c->phv, c->thl);
         double e = (m - c->C) / (fabs(c->C) + x->wfloor + 2 * c->Cse);
         gsl_vector_set(r, i, isfinite(e) ? e : 1e3);
+    }
+    return GSL_SUCCESS;
+}
+
+/* analytic Jacobian of the log-linear forms: dr/dp = M/s * d(log M)/dp, with d(log M)/dp the interpolation weights */
+static int resid_df(const gsl_vector *v, void *data, gsl_matrix *J)
+{
+    ctx_t *x = data;
+    cu_fit *f = x->f;
+    unpack(x, v);
+    gsl_matrix_set_zero(J);
+    for (int i = 0; i < x->n; i++) {
+        const cu_cell *c = &x->c[i];
+        double m = cu_fit_eval(f, c->d, c->thv, c->phv, c->thl);
+        double s = fabs(c->C) + x->wfloor + 2 * c->Cse, a = isfinite(m) ? m / s : 0;
+        int iv = find(f->thv, f->nv, c->thv), il = find(f->thl, f->nl, c->thl), i0, it;
+        double w = interp_idx(f->d, f->nd, c->d, &i0), wt = theta_w(cos_scat(c->thv, c->phv, c->thl), &it);
+        int i1 = f->nd > 1 ? i0 + 1 : 0;
+        int idx[16]; double cf[16]; int k = 0;
+        if (f->model == CU_MODEL_BOUTHORS) {
+            /* d log M / dp for eq. 3.32 with B = B1 - B2, C* = e^lc, D* = e^ld */
+            const double *p = f->par;
+            double B = p[off_b1(f) + iv] - p[off_b2(f) + il], Cs = exp(p[off_c(f) + iv]), D = exp(p[off_d(f) + iv]);
+            double lbd = log(fmax(B + D, 1e-9)), lnum = log(c->d + D);
+            int guard = lbd * lbd < 1e-8 || B + D <= 1e-9;
+            double dden_dB = guard ? 0 : 2.0 / ((B + D) * lbd);          /* d log(den) / dB */
+            double dlogM_dB = -dden_dB + (c->d - B) / (Cs * Cs);
+            double dnum_dD = fabs(lnum) > 1e-12 ? 2.0 / ((c->d + D) * lnum) : 0;
+            idx[k] = it; cf[k++] = 1 - wt;
+            idx[k] = it + 1; cf[k++] = wt;
+            idx[k] = off_a1(f) + iv; cf[k++] = 1;
+            idx[k] = off_a2(f) + il; cf[k++] = 1;
+            idx[k] = off_b1(f) + iv; cf[k++] = dlogM_dB;
+            idx[k] = off_b2(f) + il; cf[k++] = -dlogM_dB;
+            idx[k] = off_c(f) + iv; cf[k++] = (c->d - B) * (c->d - B) / (Cs * Cs);
+            idx[k] = off_d(f) + iv; cf[k++] = D * (dnum_dD - dden_dB);
+        } else if (f->model == CU_MODEL_LOGSEP2) {
+            idx[k] = i0 * CU_FIT_NTH + it; cf[k++] = (1 - w) * (1 - wt);
+            idx[k] = i0 * CU_FIT_NTH + it + 1; cf[k++] = (1 - w) * wt;
+            idx[k] = i1 * CU_FIT_NTH + it; cf[k++] = w * (1 - wt);
+            idx[k] = i1 * CU_FIT_NTH + it + 1; cf[k++] = w * wt;
+        } else {
+            idx[k] = it; cf[k++] = 1 - wt;
+            idx[k] = it + 1; cf[k++] = wt;
+        }
+        if (f->model != CU_MODEL_BOUTHORS) {
+            idx[k] = off_h(f) + i0 * f->nv + iv; cf[k++] = 1 - w;
+            idx[k] = off_h(f) + i1 * f->nv + iv; cf[k++] = w;
+            idx[k] = off_k(f) + i0 * f->nl + il; cf[k++] = 1 - w;
+            idx[k] = off_k(f) + i1 * f->nl + il; cf[k++] = w;
+        }
+        for (int q = 0; q < k; q++) {
+            int col = x->inv[idx[q]];
+            if (col >= 0 && cf[q] != 0) gsl_matrix_set(J, i, col, gsl_matrix_get(J, i, col) + a * cf[q]);
+        }
     }
     return GSL_SUCCESS;
 }
@@ -171,12 +241,13 @@ int cu_fit_slice(cu_fit *f, int model, int group, double t, const cu_cell *cells
         if (c->C > f->cmax) f->cmax = c->C;
     }
     if (m == 0 || f->cmax <= 0) { free(sel); f->status = -1; return -1; }
-    f->npar = model == CU_MODEL_BOUTHORS ? CU_FIT_NTH + 4 * f->nv + 2 * f->nl : CU_FIT_NTH + f->nd * (f->nv + f->nl);
+    f->npar = model == CU_MODEL_BOUTHORS ? CU_FIT_NTH + 4 * f->nv + 2 * f->nl : off_k(f) + f->nd * f->nl;
     if (f->npar > (int)(sizeof f->par / sizeof f->par[0])) { free(sel); return -1; }
     int *fix = calloc(f->npar, sizeof(int)), *map = calloc(f->npar, sizeof(int));
     /* degeneracies removed by fixing: P*(90 deg) = 1 (P* against A), A2*(thL_0) = 1 and B2*(thL_0) = 0 (A1/A2 and
      * B1/B2 offsets); in the log-separable form K(d, thL_0) = 0. For n = 16+ P* = 1 (isotropic, as in Bouthors). */
-    for (int k = 0; k < CU_FIT_NTH; k++) if (k == 6 || group == 8) fix[k] = 1;
+    for (int r = 0; r < (model == CU_MODEL_BOUTHORS ? 1 : prow(f)); r++)
+        for (int k = 0; k < CU_FIT_NTH; k++) if (k == 6 || group == 8) fix[r * CU_FIT_NTH + k] = 1;
     /* starting values */
     double sumlog = 0;
     int nlog = 0;
@@ -205,25 +276,51 @@ int cu_fit_slice(cu_fit *f, int model, int group, double t, const cu_cell *cells
             }
     }
     int p = 0;
-    for (int i = 0; i < f->npar; i++) if (!fix[i]) map[p++] = i;
-    ctx_t x = { f, sel, m, fix, map, 0.01 * f->cmax };
+    int *inv = malloc(sizeof(int) * f->npar);
+    for (int i = 0; i < f->npar; i++) { inv[i] = -1; if (!fix[i]) { inv[i] = p; map[p++] = i; } }
+    ctx_t x = { f, sel, m, fix, map, inv, 0.01 * f->cmax };
+    /* Eq. 3.32 has local minima (the log^2 ratio is singular where B* + D* = 1 and the Gaussian can switch off
+     * cells), so it is started from several (C*, D*) guesses and the lowest cost wins; the log-linear forms are
+     * convex up to the weights and need one start. */
+    static const double cs0[] = { 0.5, 0.25, 1.0, 0.5 }, ds0[] = { 0.1, 0.5, 0.02, 2.0 };
+    int nstart = model == CU_MODEL_BOUTHORS ? 4 : 1;
+    double *init = malloc(sizeof(double) * f->npar), *best = malloc(sizeof(double) * f->npar);
+    memcpy(init, f->par, sizeof(double) * f->npar);
+    double best_cost = INFINITY;
+    int best_iter = 0, best_status = -1;
     gsl_vector *v = gsl_vector_alloc(p);
-    for (int k = 0; k < p; k++) gsl_vector_set(v, k, f->par[map[k]]);
     gsl_multifit_nlinear_parameters fp = gsl_multifit_nlinear_default_parameters();
     fp.trs = gsl_multifit_nlinear_trs_lm;   /* Levenberg-Marquardt */
     fp.scale = gsl_multifit_nlinear_scale_more;
     gsl_multifit_nlinear_workspace *w = gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &fp, m, p);
     gsl_multifit_nlinear_fdf fdf;
     memset(&fdf, 0, sizeof fdf);
-    fdf.f = resid; fdf.df = NULL; fdf.fvv = NULL; fdf.n = m; fdf.p = p; fdf.params = &x;
-    int info = 0;
-    gsl_multifit_nlinear_init(v, &fdf, w);
-    f->status = gsl_multifit_nlinear_driver(200, 1e-8, 1e-8, 1e-8, NULL, NULL, &info, w);
-    f->iter = (int)gsl_multifit_nlinear_niter(w);
-    unpack(&x, w->x);
+    fdf.f = resid; fdf.df = resid_df; fdf.fvv = NULL; fdf.n = m; fdf.p = p; fdf.params = &x;
+    for (int st = 0; st < nstart; st++) {
+        memcpy(f->par, init, sizeof(double) * f->npar);
+        if (model == CU_MODEL_BOUTHORS)
+            for (int iv = 0; iv < f->nv; iv++) {
+                f->par[off_c(f) + iv] = log(cs0[st] * t);
+                f->par[off_d(f) + iv] = log(ds0[st] * t + 2.0);
+            }
+        for (int k = 0; k < p; k++) gsl_vector_set(v, k, f->par[map[k]]);
+        int info = 0;
+        gsl_multifit_nlinear_init(v, &fdf, w);
+        int status = gsl_multifit_nlinear_driver(300, 1e-8, 1e-8, 1e-8, NULL, NULL, &info, w);
+        double cost;
+        gsl_blas_ddot(gsl_multifit_nlinear_residual(w), gsl_multifit_nlinear_residual(w), &cost);
+        if (isfinite(cost) && cost < best_cost) {
+            best_cost = cost; best_status = status; best_iter = (int)gsl_multifit_nlinear_niter(w);
+            unpack(&x, gsl_multifit_nlinear_position(w));
+            memcpy(best, f->par, sizeof(double) * f->npar);
+        }
+    }
+    memcpy(f->par, best, sizeof(double) * f->npar);
+    f->status = best_status; f->iter = best_iter;
     gsl_multifit_nlinear_free(w);
     gsl_vector_free(v);
-    free(fix); free(map); free(sel);
+    free(init); free(best);
+    free(fix); free(map); free(inv); free(sel);
     return 0;
 }
 
@@ -269,7 +366,12 @@ void cu_fit_write(FILE *fp, const cu_fit *f)
     const double *p = f->par;
     const char *g[] = { "", "1", "2", "3", "4", "5-6", "7-9", "10-15", "16+" };
     const char *gn = f->group >= 1 && f->group <= 8 ? g[f->group] : "?";
-    for (int k = 0; k < CU_FIT_NTH; k++) fprintf(fp, "P %s %.6g Theta=%g %.6g\n", gn, f->t, 15.0 * k, exp(p[k]));
+    if (f->model == CU_MODEL_LOGSEP2) {
+        for (int id = 0; id < f->nd; id++)
+            for (int k = 0; k < CU_FIT_NTH; k++)
+                fprintf(fp, "P %s %.6g d/t=%.4g Theta=%g %.6g\n", gn, f->t, f->d[id] / f->t, 15.0 * k, exp(p[id * CU_FIT_NTH + k]));
+    } else
+        for (int k = 0; k < CU_FIT_NTH; k++) fprintf(fp, "P %s %.6g Theta=%g %.6g\n", gn, f->t, 15.0 * k, exp(p[k]));
     if (f->model == CU_MODEL_BOUTHORS) {
         for (int i = 0; i < f->nv; i++)
             fprintf(fp, "A1 %s %.6g thetaV=%g %.6g\nB1 %s %.6g thetaV=%g %.6g\nC %s %.6g thetaV=%g %.6g\nD %s %.6g thetaV=%g %.6g\n",

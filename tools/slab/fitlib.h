@@ -9,7 +9,9 @@ typedef struct { int group; double t, d, thv, phv, thl, C, Cse; } cu_cell;
 /* appends the rows of a table file to *cells (realloc'd); returns 0 or -1 with msg */
 int cu_cells_read(const char *path, cu_cell **cells, int *n, char *msg, size_t msglen);
 
-enum { CU_MODEL_BOUTHORS = 0, CU_MODEL_LOGSEP = 1 };
+/* BOUTHORS: eq. 3.32. LOGSEP: log C = log P*(Theta) + H(d, thV) + K(d, thL). LOGSEP2: as LOGSEP with P* also
+ * depending on depth, P*(Theta, d). The log-linear forms get an analytic Jacobian. */
+enum { CU_MODEL_BOUTHORS = 0, CU_MODEL_LOGSEP = 1, CU_MODEL_LOGSEP2 = 2 };
 #define CU_FIT_MAXN 64
 #define CU_FIT_NTH 13   /* P*(Theta) nodes every 15 degrees */
 

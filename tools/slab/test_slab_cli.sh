@@ -45,4 +45,14 @@ h=$($S --phase hg:0.85 --tau 5 --photons 1e5 --quiet --seed 4 | awk '/^R /{print
 if echo "$m $h" | awk '{ d = $1 - $3; if (d < 0) d = -d; exit !(d < 3 * sqrt($2 * $2 + $4 * $4)) }'; then t_ok mie_table_transport
 else t_fail mie_table_transport "R(table)=$m R(hg)=$h"; fi
 
+# MPI build (only when mpicc was found at build time): 2 ranks reproduce the threaded output bit for bit
+if [ -x build/cumulo-slab-mpi ] && command -v mpirun >/dev/null 2>&1; then
+  A="--tau 3 --mu0 0.6 --photons 2e4 --report totals,orders,radiance,table --depths 3 --mu 0.7 --seed 9 --quiet --threads 1"
+  m=$(timeout 120 mpirun --allow-run-as-root --oversubscribe -np 2 build/cumulo-slab-mpi $A 2>/dev/null)
+  s=$($S $A)
+  if [ -n "$m" ] && [ "$m" = "$s" ]; then t_ok mpi_same_results; else t_fail mpi_same_results "MPI output differs or empty"; fi
+else
+  t_skip mpi_same_results "build/cumulo-slab-mpi or mpirun not available"
+fi
+
 t_summary
