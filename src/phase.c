@@ -247,3 +247,10 @@ void cu_phase_table_free(cu_phase_table *t)
     t->rgb = NULL;
     t->peak = NULL;
 }
+
+double cu_phase_table_extinction(const cu_phase_table *t, const cu_scene *s)
+{
+    if (t->sigma_ext_um2[1] > 0)
+        return s->density_cm3 * 1e6 * t->sigma_ext_um2[1] * 1e-12;
+    return cu_scene_core_extinction(s);
+}

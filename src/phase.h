@@ -27,4 +27,8 @@ int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_
  * grid, split into P~ and P_p at the table's chop angle. Errors name file:line. */
 int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err);
 void cu_phase_table_free(cu_phase_table *t);
+/* Core extinction k_e in m^-1 for scene s with this table: rho_0 * sigma_ext (the table's green channel, one scalar
+ * so opacity stays a scalar; the channels differ by ~1%) when the table has one, else rho_0 * 2 pi r_e^2 (Kol eq.
+ * 3.3). Renderer and path tracer both take k_e from here. */
+double cu_phase_table_extinction(const cu_phase_table *t, const cu_scene *s);
 #endif

@@ -179,10 +179,7 @@ static int upload_phase(cu_renderer *r, cu_error *err)
     r->phase_g_eff = t.g_full[1];
     for (int c = 0; c < 3; c++)
         r->peak_f[c] = t.f[c];
-    /* The table's extinction cross-section wins over 2 pi r_e^2 (DESIGN.md). One scalar extinction keeps opacity a
-     * scalar for premultiplied blending; the channels' sigma_ext differ by ~1%, so green stands for all three. */
-    if (t.sigma_ext_um2[1] > 0)
-        r->cloud.ke = r->scene.density_cm3 * 1e6 * t.sigma_ext_um2[1] * 1e-12;
+    r->cloud.ke = cu_phase_table_extinction(&t, &r->scene); /* the table's sigma_ext wins (DESIGN.md) */
     float *rgba = calloc(4 * 2 * (size_t)t.n, sizeof(float));
     if (!rgba) {
         cu_phase_table_free(&t);
