@@ -50,13 +50,15 @@ static int grow(mie_work *w, int nterms, int nd)
 
 /* D_n(z) = -n/z + J_{n-1/2}(z)/J_{n+1/2}(z), the Bessel ratio from its continued fraction
  * a_k = 2(n + 1/2 + k - 1)/z, partial numerators -1, evaluated by the modified Lentz method (Lentz 1976). */
-static double complex lentz_logderiv(int n, double complex z)
+static int lentz_logderiv(int n, double complex z, double complex *out)
 {
     const double tiny = 1e-300;
     double nu = n + 0.5;
     double complex f = 2.0 * nu / z;
     double complex c = f, dd = 0.0;
-    for (int k = 1; k < 100000; k++) {
+    /* The fraction needs about |z| - n terms before it converges when n < |z|. */
+    long kmax = (long)(2.0 * cabs(z)) + 10000;
+    for (long k = 1; k < kmax; k++) {
         double complex b = 2.0 * (nu + k) / z;
         dd = b - dd;
         if (cabs(dd) < tiny)
@@ -67,10 +69,12 @@ static double complex lentz_logderiv(int n, double complex z)
         dd = 1.0 / dd;
         double complex delta = c * dd;
         f *= delta;
-        if (cabs(delta - 1.0) < 1e-16)
-            break;
+        if (cabs(delta - 1.0) < 1e-16) {
+            *out = f - n / z;
+            return 0;
+        }
     }
-    return f - n / z;
+    return -1;
 }
 
 int mie_solve(double complex m, double x, mie_work *w, mie_q *q)
@@ -91,7 +95,8 @@ int mie_solve(double complex m, double x, mie_work *w, mie_q *q)
     if (grow(w, nterms, nmx) != 0)
         return -1;
     double complex *d = w->d;
-    d[nmx] = lentz_logderiv(nmx, mx);
+    if (lentz_logderiv(nmx, mx, &d[nmx]) != 0)
+        return -1;
     for (int n = nmx; n >= 1; n--) {
         double complex r = n / mx;
         d[n - 1] = r - 1.0 / (d[n] + r);
