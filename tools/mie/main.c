@@ -229,7 +229,7 @@ int main(int argc, char **argv)
             mt_angles_free(&ang);
             return 1;
         }
-        int wrc = mt_write_table(out, &r, ang.theta_deg, cmd, &p, secs);
+        int wrc = mt_write_table(out, &r, ang.theta_deg, cmd, &p);
         if (out != stdout && fclose(out) != 0)
             wrc = -1;
         if (wrc != 0)
@@ -265,7 +265,7 @@ int main(int argc, char **argv)
     }
     for (int i = 0; i < nangles; i++)
         printf("%g %.7e\n", angles[i], r.p[0][i]);
-    printf("g %.7f\nqext %.7f\nsigma_ext_um2 %.7e\n", r.g[0], r.sigma_ext[0] / r.geo[0], r.sigma_ext[0]);
+    printf("g %.8g\nqext %.8g\nsigma_ext_um2 %.7e\n", r.g[0], r.sigma_ext[0] / r.geo[0], r.sigma_ext[0]);
     mt_result_free(&r);
     mt_angles_free(&ang);
     return 0;

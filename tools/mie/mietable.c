@@ -205,6 +205,8 @@ static void spectral_point(const mt_params *p, const mt_angles *a, spectral *s)
         sg += wt * q.g * q.qsca * area;
         geo += wt * area;
     }
+    if (!(wsum > 0.0)) /* a distribution narrower than the radius step: nothing sampled */
+        goto done;
     for (int i = 0; i < a->nang; i++) {
         int h = a->src[i] >> 1;
         s->dsdo[i] = ((a->src[i] & 1) ? bwd[h] : fwd[h]) / wsum;
@@ -418,8 +420,7 @@ int mt_chop(const double *theta_deg, const double *p, int n, double chop_deg, do
 
 /* ---- output -------------------------------------------------------------------------------------------------- */
 
-int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const char *command, const mt_params *p,
-                   double seconds)
+int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const char *command, const mt_params *p)
 {
     if (r->nchan != 3)
         return -1;
@@ -447,7 +448,7 @@ int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const
     fprintf(out, "# angles: 0.05 deg steps on [0, 10] and [170, 180], 0.25 deg on [10, 170]; g from the Mie "
                  "coefficients; f = integral of P_p = P - P~, P~ = P(8 deg) below 8 deg\n");
     fprintf(out, "# Mie evaluations: %ld\n", r->nsolves);
-    (void)seconds; /* the run time goes to stderr and data/mie_cloud.md, so the table is reproducible */
+    /* No run time or date in the file: it must regenerate byte for byte (the time goes to stderr). */
     fprintf(out, "channels 3\n");
     fprintf(out, "lambda_nm %.2f %.2f %.2f\n", r->lambda_nm[0], r->lambda_nm[1], r->lambda_nm[2]);
     fprintf(out, "sigma_ext_um2 %.7e %.7e %.7e\n", r->sigma_ext[0], r->sigma_ext[1], r->sigma_ext[2]);

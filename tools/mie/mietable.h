@@ -30,7 +30,8 @@ typedef struct {
     int *src;             /* output i comes from mu index src[i] >> 1, backward hemisphere if src[i] & 1 */
 } mt_angles;
 
-/* 0.05 deg steps on [0, 10] and [170, 180] (forward peak, glory), fine_step elsewhere... see mt_angles_table. */
+/* The table grid: fine_deg steps on [0, fine_until] and [180 - fine_until, 180] (forward peak, glory), coarse_deg
+ * between; the default table uses 0.05, 10, 0.25. Both step counts must be whole. */
 int mt_angles_table(mt_angles *a, double fine_deg, double fine_until_deg, double coarse_deg);
 /* Arbitrary directions (degrees, any order), for the command line. */
 int mt_angles_list(mt_angles *a, const double *theta_deg, int n);
@@ -46,7 +47,7 @@ typedef struct {
     double geo[3];         /* <pi r^2>, um^2 per droplet */
     double g[3];           /* asymmetry from the Mie coefficients, not from the sampled p */
     double m_re[3];        /* refractive index at lambda_nm (informational) */
-    int nsizes;            /* radius nodes at the longest wavelength (informational) */
+    int nsizes;            /* most radius nodes used at any one wavelength (informational) */
     long nsolves;          /* Mie evaluations made */
 } mt_result;
 
@@ -63,7 +64,6 @@ double mt_sphere_integral(const double *theta_deg, const double *v, int n, int c
 int mt_chop(const double *theta_deg, const double *p, int n, double chop_deg, double *f, double *ptilde);
 
 /* Writes the engine table (format v1, see data/mie_cloud.md); command is recorded in the header. */
-int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const char *command, const mt_params *p,
-                   double seconds);
+int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const char *command, const mt_params *p);
 
 #endif
