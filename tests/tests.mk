@@ -20,6 +20,16 @@ $(B)/test_render: tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) $(B)/
 	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_render
 
+$(B)/test_extremes: tests/test_extremes.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
+	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_extremes.c tests/render_util.c $(HEADLESS_SRCS) \
+	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_extremes
+
+# The long versions of the stability tests (larger images, finer sweeps).
+stress: all $(B)/test_extremes
+	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes
+.PHONY: stress
+
 # Rewrites the reference images from the current renderer (EGL); look at them before committing.
 refs: $(B)/test_render
 	$(TEST_ENV) CUMULO_WRITE_REFS=1 CMOCKA_TEST_ABORT=0 $(B)/test_render
