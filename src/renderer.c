@@ -493,6 +493,7 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_viewproj"), 1, GL_FALSE, vp);
     gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_viewproj"), 1, GL_FALSE, inv_vp);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_cam"), (float)cam.x, (float)cam.y, (float)cam.z);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_bound_R"), (float)r->cloud.bound_radius);
     set_ellipsoid_uniforms(r, p);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_ke"), (float)r->cloud.ke);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_h"), (float)(r->cloud.h > 1e-6 ? r->cloud.h : 1e-6));

@@ -120,7 +120,7 @@ static void test_beer_lambert_chords(void **st)
         check_beer(BEER_SCENE, b, &err, &edge);
         printf("%s: Beer-Lambert max |T - exp(-k_e L)| = %.2e over chords > 10 m; %d edge pixels off by > 0.01\n",
                backend_names[b], err, edge);
-        assert_true(err < 2e-4); /* fp32 trapezoids over a constant: exact but for rounding */
+        assert_true(err < 5e-5); /* fp32 trapezoids over a constant: exact but for rounding (measured 8.6e-6) */
         assert_true(edge < 40);
     }
 }
@@ -135,7 +135,7 @@ static void test_overlap_integrated_once(void **st)
         int edge;
         check_beer(t, b, &err, &edge);
         printf("%s: union of two overlapping ellipsoids: max error %.2e\n", backend_names[b], err);
-        assert_true(err < 2e-4);
+        assert_true(err < 5e-5);
     }
 }
 

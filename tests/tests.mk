@@ -10,6 +10,11 @@ $(B)/test_phase: tests/test_phase.c $(B)/libcumulo.a
 	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_phase
 
+# -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
+$(B)/test_precision: tests/test_precision.c
+	$(CC) $(TEST_CFLAGS) -Wno-pedantic -o $@ $< $(TEST_LIBS)
+CHECK_TESTS += $(B)/test_precision
+
 $(B)/test_math: tests/test_math.c $(B)/libcumulo.a
 	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_math
