@@ -32,6 +32,7 @@ include platform/platform.mk
 include src/engine.mk
 include tools/mie/mie.mk
 include tools/slab/slab.mk
+include tools/pathtrace/pathtrace.mk
 include tests/tests.mk
 
 all: $(ALL_BINS)

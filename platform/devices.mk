@@ -76,6 +76,14 @@ $(B)/test_drm_mode: platform/test_drm_mode.c platform/drm_mode.c platform/drm_mo
 	@mkdir -p $(@D)
 	$(PLATFORM_TEST_CC)
 
+# evdev.c's device half against fake /dev/input devices: libc's open/ioctl/read/opendir wrapped at link time.
+$(B)/test_evdev_dev: platform/test_evdev_dev.c platform/evdev.c platform/evdev.h platform/input.c
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_COMMON) -Iplatform $(call pc_cflags,cmocka) -o $@ platform/test_evdev_dev.c platform/evdev.c \
+	  platform/input.c $(call pc_libs,cmocka) $(LDLIBS_COMMON) \
+	  -Wl,--wrap=open,--wrap=ioctl,--wrap=read,--wrap=opendir,--wrap=readdir,--wrap=closedir
+CHECK_TESTS += $(B)/test_evdev_dev
+
 # gpio.c against a scripted fake of libgpiod: the v2 build declares the v2 API itself, so it runs everywhere; the v1
 # build needs the v1 header (libgpiod 1.x installed).
 $(B)/test_gpio_v2: platform/test_gpio.c platform/gpio.c platform/gpio.h platform/quadrature.c platform/input.c
