@@ -53,24 +53,28 @@ int cu_quad_feed(cu_quad *q, int a, int b, uint64_t t_ns)
     uint64_t dt = t_ns > q->t_last ? t_ns - q->t_last : 0;
     int was_rest = is_rest(q, q->ab);
     int d = step_between(q->ab, cur);
+    int rejected = 0;
+    if (q->pending) {
+        /* The jump before this was taken as a missed edge; a change right after it means it was the start of a
+         * noise burst instead: take the guess back (even if it completed a detent, the count comes out right
+         * once the real turn passes that detent). */
+        if (dt < q->cfg.glitch_ns)
+            q->acc -= q->pending;
+        q->pending = 0;
+    }
     if (d == 2) {
         /* Both contacts changed: a real turn passes through the state between, so one edge was missed. Its
          * direction is only known from momentum: the knob was turning (a recent valid step) and this is not a
-         * noise burst (edges microseconds apart). Otherwise reject it: the count stays put, never jumps. */
+         * noise burst (edges microseconds apart). Otherwise reject it: the count does not move. */
         int dir = q->acc > 0 ? 1 : q->acc < 0 ? -1 : q->last_dir;
         uint64_t since_step = t_ns > q->t_step ? t_ns - q->t_step : 0;
-        if (dt < q->cfg.glitch_ns) {
-            /* Microseconds after the previous change: noise on both lines. Keep the state we believe, so the
-             * burst's way back (also a jump) is a no-op instead of a second, unrelated guess. */
-            q->invalid++;
-            q->t_last = t_ns;
-            return 0;
-        }
-        if (dir != 0 && since_step <= q->cfg.momentum_ns) {
+        if (dt >= q->cfg.glitch_ns && dir != 0 && since_step <= q->cfg.momentum_ns) {
             q->acc += 2 * dir;
+            q->pending = 2 * dir;
             q->inferred++;
         } else {
-            q->invalid++; /* no direction to assume: follow the levels, count nothing for this jump */
+            q->invalid++;
+            rejected = 1;
         }
     } else {
         /* Bounce on one contact walks back and forth between two neighbours: +1 -1 +1 sums to the true move. */
@@ -83,9 +87,9 @@ int cu_quad_feed(cu_quad *q, int a, int b, uint64_t t_ns)
     if (was_rest)
         q->t_left_rest = t_ns;
     q->t_last = t_ns;
-    q->ab = cur;
-    if (!is_rest(q, cur))
-        return 0;
+    q->ab = cur; /* the levels are the truth; only the count is guessed */
+    if (!is_rest(q, cur) || rejected)
+        return 0; /* a rejected jump into the detent position says nothing about how far the knob went */
 
     /* Back in a detent: whole detents travelled since the last one. Truncation (not rounding) means a half cycle
      * left by a rejected jump never turns into a count of its own. */

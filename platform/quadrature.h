@@ -18,6 +18,7 @@ typedef struct cu_quad {
     unsigned rest;          /* the levels at a detent (the state at start-up: the knob rests in a detent) */
     int acc;                /* quarter steps moved since the last detent */
     int last_dir;           /* direction of the last valid step (+1 clockwise, -1 counter-clockwise, 0 none yet) */
+    int pending;            /* quarter steps added by the last inferred missed edge, until the next change confirms it */
     uint64_t t_last;        /* time of the last level change */
     uint64_t t_step;        /* time of the last valid single step */
     uint64_t t_left_rest;   /* when the contacts last left the detent position */

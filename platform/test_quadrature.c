@@ -273,6 +273,50 @@ static void test_button_debounce(void **state)
     assert_int_equal(presses, 3);
 }
 
+/* Deterministic pseudo-random traces (LCG; no libc rand, whose sequence differs between C libraries): whole detents
+ * either way at hand speeds, bounce of 0-3 toggles on any edge, and noise bursts on both lines while the knob rests.
+ * The decoder must count exactly the detents turned. */
+static uint32_t lcg(uint32_t *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+static void test_random_traces(void **state)
+{
+    (void)state;
+    uint32_t seed = 12345;
+    for (int trial = 0; trial < 200; trial++) {
+        static trace tr;
+        tr.n = 0; tr.t = 1000 * MS;
+        int phase = 0, truth = 0;
+        for (int d = 0; d < 12 && tr.n < 3500; d++) {
+            int dir = (lcg(&seed) & 1) ? 1 : -1;
+            uint64_t interval = 2 * MS + (lcg(&seed) % (18 * MS));
+            for (int q = 0; q < 4; q++)
+                steps(&tr, &phase, dir, 1, interval, (int)(lcg(&seed) % 4));
+            truth += dir;
+            if (lcg(&seed) % 3 == 0) {
+                /* At rest (levels 11): a burst of 2-8 glitches 5-50 us apart on both lines, back to 11. */
+                tr.t += 30 * MS;
+                int k = 2 + (int)(lcg(&seed) % 7);
+                for (int g = 0; g < k; g++) {
+                    int line = (int)(lcg(&seed) & 1);
+                    edge(&tr, line, 0, 5 * US + lcg(&seed) % (45 * US));
+                    if (lcg(&seed) & 1)
+                        edge(&tr, !line, 0, 0); /* simultaneous */
+                    edge(&tr, 0, 1, 5 * US + lcg(&seed) % (45 * US));
+                    edge(&tr, 1, 1, 0);
+                }
+                tr.t += 30 * MS;
+            }
+        }
+        int got = run(&tr, 4);
+        if (got != truth)
+            fail_msg("trial %d: counted %d detents, turned %d", trial, got, truth);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -288,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_unsorted_edges_from_two_queues),
         cmocka_unit_test(test_rest_at_00),
         cmocka_unit_test(test_button_debounce),
+        cmocka_unit_test(test_random_traces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
