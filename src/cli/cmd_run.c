@@ -60,6 +60,15 @@ static void usage(FILE *f)
         "  --input stdin       commands: sun EL AZ | elevation EL | azimuth AZ | turn N | toggle | status | quit\n"
         "  stdin is read by default unless --no-stdin. Each sun change is logged on stderr as\n"
         "  'sun elevation=E azimuth=A source=S'.\n");
+    fprintf(f, "display back ends in this build:");
+    for (int i = 0; cu_display_backends[i]; i++)
+        fprintf(f, " %s", cu_display_backends[i]->name);
+    fprintf(f, " (headless = egl)\n");
+#ifdef CU_HAVE_GPIOD
+    fprintf(f, "gpio: %s\n", cu_gpio_api());
+#else
+    fprintf(f, "gpio: not built (no libgpiod)\n");
+#endif
 }
 
 static uint64_t now_ns(void)
