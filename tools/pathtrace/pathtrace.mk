@@ -15,4 +15,4 @@ $(B)/test_pathtrace: $(PT_OBJ)/test_pt.o $(PT_OBJ)/pt.o $(B)/libcumulo.a $(B)/li
 	$(CC) -o $@ $(PT_OBJ)/test_pt.o $(PT_OBJ)/pt.o $(call pc_libs,cmocka) $(PT_LIBS)
 
 ALL_BINS += $(B)/cumulo-pt
-#CHECK_TESTS += $(B)/test_pathtrace $(PT_DIR)/test_pt_cli.sh
+CHECK_TESTS += $(B)/test_pathtrace $(PT_DIR)/test_pt_cli.sh
