@@ -44,6 +44,11 @@ t_expect bad_input_gpio 2 "needs both 'a=' and 'b='" -- $C run $S --platform hea
 t_expect bad_input_key 2 "unknown key 'x'" -- $C run $S --platform headless --input gpio:a=1,b=2,x=3
 t_expect bad_range 2 "--sun-elevation-range '60:5'" -- $C run $S --platform headless --sun-elevation-range 60:5
 t_expect bad_platform 2 "no display back end 'vga'" -- $C run $S --platform vga
+if $C run --help | grep -q 'back ends in this build:.* drm'; then
+  t_expect bad_mode 2 "--mode '1920x'" -- $C run $S --platform drm --mode 1920x
+else
+  t_skip bad_mode "this cumulo was built without DRM"
+fi
 t_expect bad_frames 2 "--frames expects a whole number" -- $C run $S --platform headless --frames 0
 
 # DRM on a machine without /dev/dri: non-zero and a message that says what to do.

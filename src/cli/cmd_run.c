@@ -9,6 +9,9 @@
 #ifdef CU_HAVE_GPIOD
 #include "../../platform/gpio.h"
 #endif
+#ifdef CU_HAVE_DRM
+#include "../../platform/drm_mode.h"
+#endif
 #include <errno.h>
 #include <poll.h>
 #include <signal.h>
@@ -373,6 +376,16 @@ int cmd_run(int argc, char **argv)
         fprintf(stderr, "cumulo: %s\n", err);
         return 2;
     }
+#ifdef CU_HAVE_DRM
+    if (dopt.mode) {
+        int mw, mh;
+        double mhz;
+        if (cu_drm_parse_mode(dopt.mode, &mw, &mh, &mhz, err, sizeof err)) {
+            fprintf(stderr, "cumulo: %s\n", err);
+            return 2;
+        }
+    }
+#endif
     int stdin_explicit = 0;
     for (int i = 0; i < nin; i++)
         stdin_explicit |= ins[i].spec.kind == CU_INPUT_STDIN;
