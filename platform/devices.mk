@@ -76,6 +76,17 @@ $(B)/test_drm_mode: platform/test_drm_mode.c platform/drm_mode.c platform/drm_mo
 	@mkdir -p $(@D)
 	$(PLATFORM_TEST_CC)
 
+# drm.c against a fake Pi-like display stack (libdrm, GBM and the EGL helpers defined in the test, /dev/dri faked
+# through ld --wrap): needs only the libdrm and GBM headers.
+ifeq ($(HAVE_DRM),yes)
+$(B)/test_drm: platform/test_drm.c platform/drm.c platform/drm_mode.c platform/display.h platform/egl_common.h
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS_COMMON) -Iplatform $(call pc_cflags,cmocka libdrm gbm egl) -o $@ platform/test_drm.c \
+	  platform/drm.c platform/drm_mode.c $(call pc_libs,cmocka) $(LDLIBS_COMMON) \
+	  -Wl,--wrap=open,--wrap=stat,--wrap=opendir,--wrap=readdir,--wrap=closedir
+CHECK_TESTS += $(B)/test_drm
+endif
+
 # evdev.c's device half against fake /dev/input devices: libc's open/ioctl/read/opendir wrapped at link time.
 $(B)/test_evdev_dev: platform/test_evdev_dev.c platform/evdev.c platform/evdev.h platform/input.c
 	@mkdir -p $(@D)

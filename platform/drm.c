@@ -182,7 +182,7 @@ static int probe(const char *want, char *chosen, size_t clen, char *err, size_t 
     if (n > 0)
         drmFreeDevices(devs, n);
     if (denied)
-        snprintf(err, errlen, "drm: /dev/dri/card* not accessible (permission denied): add the user to group "
+        snprintf(err, errlen, "drm: /dev/dri/card*: permission denied: add the user to group "
                  "'video' (sudo usermod -aG video $USER) or run as root");
     else
         snprintf(err, errlen, "drm: no DRM device with a connected display: plug in a monitor (and check "
