@@ -34,6 +34,7 @@ include tools/mie/mie.mk
 include tools/slab/slab.mk
 include tools/pathtrace/pathtrace.mk
 include tests/tests.mk
+include tests/vm/vm.mk
 
 all: $(ALL_BINS)
 
@@ -54,4 +55,5 @@ install: all
 	install -m 644 scenes/*.scene $(DESTDIR)$(PREFIX)/share/cumulo/scenes/
 	-install -m 644 data/* $(DESTDIR)$(PREFIX)/share/cumulo/data/
 
--include $(shell find $(B) -name '*.d' 2>/dev/null)
+# dependency files of our own objects (build/vm holds a kernel tree with its own *.d, which are not ours)
+-include $(shell find $(B) -path $(B)/vm -prune -o -type f -name '*.d' -print 2>/dev/null)

@@ -4,15 +4,14 @@
 //
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
 // NOISE_OCTAVES, PROFILE_KOL, MS_MODE (0 none, 1 octaves, 2 diffusion), MS_OCTAVES, PHASE_PEAK (chopped Mie),
-// FULLSCREEN (camera inside).
+// FULLSCREEN (camera inside),
+// SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
 // but they are a few multiplies per sample; the cost is not worth a second precision domain.
-precision highp float;
-precision highp int;
-precision highp sampler3D;
-precision highp sampler2D;
+#include "density.glsl"
+#include "sunmap.glsl"
 
 #if FULLSCREEN
 in vec2 v_ndc;
@@ -22,134 +21,20 @@ in vec3 v_pos;
 #endif
 uniform vec3 u_cam;            // camera, cloud-local
 uniform float u_bound_R;       // radius of a sphere about the local origin containing every ellipsoid
-uniform vec4 u_ell_c[NUM_ELL]; // centres, cloud-local
-uniform vec4 u_ell_ir[NUM_ELL];// 1 / radii
-uniform float u_ke;            // core extinction, m^-1
-uniform float u_h;             // boundary thickness, m
 uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
-uniform float u_noise_freq;    // texture tiles per metre
-uniform vec3 u_noise_offset;
-uniform float u_noise_mean[5]; // mean of each mip level, stands in for octaves that are switched off
-uniform sampler3D u_noise;
 uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1);
                                // row 1: the removed forward peak P_p of a chopped Mie function (eq. 3.65)
 #if PHASE_PEAK
 uniform vec3 u_peak_f;         // weight f of the removed peak per channel (eq. 3.68)
 #endif
 uniform int u_phase_n;
-uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
-uniform sampler2D u_sun_depth; // sun-space front depth / 4R
 #if MS_MODE == 2
-uniform sampler2D u_sun_back;  // sun-space back depth / 4R
 uniform float u_one_minus_g;   // similarity scaling of optical depth for the diffuse field
 #endif
-uniform vec3 u_sun_right, u_sun_up;
-uniform float u_sun_R;
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
 uniform float u_ms_g;          // anisotropy of the octave phase functions
 out vec4 o_color;
-
-const float PI = 3.14159265358979;
-
-float sample_level(vec3 t, int level)
-{
-    return textureLod(u_noise, t, float(level)).r;
-}
-
-// Kol eq. 3.74: five LODs at p and at 8p, each sum minus 0.75, clamped to [0,1], mapped to [-1,1].
-float fractal_noise(vec3 p)
-{
-    vec3 t = p * u_noise_freq + u_noise_offset;
-    float a = -1.5, b;
-    const float w[5] = float[5](0.015, 0.035, 0.1, 0.35, 1.5);
-    for (int L = 0; L < 5; L++) {
-        if (L < 5 - NOISE_OCTAVES) {
-            a += 2.0 * w[L] * u_noise_mean[L];
-        } else {
-            a += w[L] * (sample_level(t, L) + sample_level(8.0 * t, L));
-        }
-    }
-    b = clamp(a, 0.0, 1.0);
-    return b * 2.0 - 1.0;
-}
-
-// Kol's radial signed distance (positive inside): d = |q| (1/s - 1) with s = |q / r|. Finite at the centre.
-float radial_distance(vec3 p, int i)
-{
-    vec3 q = p - u_ell_c[i].xyz;
-    float len = length(q);
-    float s = length(q * u_ell_ir[i].xyz);
-    if (s < 1e-6) {
-        vec3 r = 1.0 / u_ell_ir[i].xyz;
-        return min(r.x, min(r.y, r.z));
-    }
-    return len / s - len;
-}
-
-float sigmoid(float x)
-{
-    x = clamp(x, 0.0, 1.0);
-    return x * x * x * (x * (x * 6.0 - 15.0) + 10.0);
-}
-
-// Chords of the ray through each ellipsoid it hits, sorted by entry.
-int n_hits;
-int hit_idx[NUM_ELL];
-float hit_t0[NUM_ELL], hit_t1[NUM_ELL];
-
-// Extinction at p = ray(t): the distance to the union is the max over ellipsoids, and only ellipsoids whose chord
-// contains t can be non-negative there, so the loop runs over the hit list, skipping chords that end before t.
-float extinction(vec3 p, float t)
-{
-    float d = -1e30;
-    for (int k = 0; k < n_hits; k++) {
-        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3)
-            d = max(d, radial_distance(p, hit_idx[k]));
-    }
-    if (d <= 0.0)
-        return 0.0;
-    if (d >= u_h)
-        return u_ke;
-    float u = d / u_h;
-#if NOISE
-    float n = fractal_noise(p);
-#else
-    float n = 0.0;
-#endif
-#if PROFILE_KOL
-    return u_ke * sigmoid(u + n);                       // eq. 3.1 as printed
-#else
-    return u_ke * sigmoid(u + 4.0 * u * (1.0 - u) * n);  // noise tapered to 0 at both borders: continuous density
-#endif
-}
-
-// Kol's sun transmittance estimate: distance l from p to the front surface seen from the sun, times k_e(p).
-// Also returns, for the diffuse term, the depth l below the front and the in-cloud thickness along the sun ray.
-float sun_optical_depth(vec3 p, float ke, out vec2 slab)
-{
-    slab = vec2(0.0);
-    vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
-    if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
-        return 0.0;
-    float front = textureLod(u_sun_depth, uv, 0.0).r;
-    if (front >= 1.0)
-        return 0.0;
-    float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
-    float l = max(z - front * 4.0 * u_sun_R, 0.0);
-#if MS_MODE == 2
-    float back = textureLod(u_sun_back, uv, 0.0).r;
-    float t = max(back - front, 0.0) * 4.0 * u_sun_R;
-    slab = vec2(min(l, t), t);
-#endif
-#if PHASE_PEAK
-    // Chopped peak (delta-M): light scattered into the removed forward peak keeps travelling with the sunbeam, so
-    // the beam that lights single scattering with P~ is attenuated by the scaled extinction (1 - f) k_e.
-    return l * ke * (1.0 - u_peak_f.g);
-#else
-    return l * ke;
-#endif
-}
 
 #if MS_MODE == 2
 // Multiply scattered light from diffusion theory in a conservative slab lit at normal incidence, thickness and depth
@@ -183,6 +68,14 @@ float hg(float g, float mu)
     return (1.0 - g * g) / (4.0 * PI * d * sqrt(d));
 }
 
+#if PHASE_PEAK
+// Chopped peak (delta-M): light scattered into the removed forward peak keeps travelling with the sunbeam, so the
+// beam that lights single scattering with P~ is attenuated by the scaled extinction (1 - f) k_e.
+#define SUN_TAU_SCALE (1.0 - u_peak_f.g)
+#else
+#define SUN_TAU_SCALE 1.0
+#endif
+
 void main()
 {
 #if FULLSCREEN
@@ -195,30 +88,7 @@ void main()
     // from 100 km lose 3 digits (tests/test_precision.c: 9e-4 relative; 4e-8 with the shift). t counts from ro.
     float t_base = max(dot(-u_cam, dir) - u_bound_R, 0.0);
     vec3 ro = u_cam + dir * t_base;
-    // Intersect every ellipsoid (analytic, cancellation-free quadratic); keep the chords in front of the camera.
-    n_hits = 0;
-    for (int i = 0; i < NUM_ELL; i++) {
-        vec3 ir = u_ell_ir[i].xyz;
-        vec3 q = (ro - u_ell_c[i].xyz) * ir, ds = dir * ir;
-        float A = dot(ds, ds), B = 2.0 * dot(q, ds), C = dot(q, q) - 1.0;
-        float disc = B * B - 4.0 * A * C;
-        if (disc <= 0.0)
-            continue;
-        float s = sqrt(disc);
-        float qq = -0.5 * (B + (B >= 0.0 ? s : -s));
-        float ta = qq / A, tb = C / qq;
-        float t0 = max(min(ta, tb), 0.0), t1 = max(ta, tb); // camera inside: start at the camera
-        if (t1 <= t0)
-            continue;
-        // insertion by entry distance
-        int k = n_hits;
-        while (k > 0 && hit_t0[k - 1] > t0) {
-            hit_t0[k] = hit_t0[k - 1]; hit_t1[k] = hit_t1[k - 1]; hit_idx[k] = hit_idx[k - 1];
-            k--;
-        }
-        hit_t0[k] = t0; hit_t1[k] = t1; hit_idx[k] = i;
-        n_hits++;
-    }
+    cast_ray(ro, dir);
     if (n_hits == 0)
         discard;
 
@@ -239,14 +109,9 @@ void main()
     int k = 0, intervals = 0;
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
-        float a = hit_t0[k], b = hit_t1[k];
-        int merged = 1;
-        k++;
-        while (k < n_hits && hit_t0[k] <= b) {
-            b = max(b, hit_t1[k]);
-            merged++;
-            k++;
-        }
+        float a, b;
+        int merged;
+        k = next_interval(k, a, b, merged);
         intervals++;
         // Segments in geometric progression, shortest at the entry (DESIGN: Kol's eq. 3.23 is garbled).
         int nseg = SEGMENTS * merged;
@@ -262,7 +127,7 @@ void main()
         vec3 p = ro + dir * (t + nudge);
         float ke_prev = extinction(p, t + nudge);
         vec2 slab;
-        float ts = sun_optical_depth(p, ke_prev, slab);
+        float ts = sun_optical_depth(p, ke_prev, slab) * SUN_TAU_SCALE;
         vec3 F_prev = ke_prev * ph0 * exp(-ts);
 #if MS_MODE == 1
         { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F_prev += vec3(ke_prev * ph_oct[o] * exp(-ao * ts)); } }
@@ -277,7 +142,7 @@ void main()
             p = ro + dir * ts_at;
             float ke = extinction(p, ts_at);
             float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
-            float ts_i = sun_optical_depth(p, ke, slab);
+            float ts_i = sun_optical_depth(p, ke, slab) * SUN_TAU_SCALE;
             vec3 F = ke * ph0 * exp(-ts_i);               // eq. 3.21
 #if MS_MODE == 1
             { float ao = 1.0; for (int o = 1; o < MS_OCTAVES; o++) { ao *= u_ms_abc.x; F += vec3(ke * ph_oct[o] * exp(-ao * ts_i)); } }

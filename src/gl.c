@@ -46,33 +46,70 @@ int cu_gl_has_extension(const cu_gl *gl, const char *name)
     return 0;
 }
 
+/* Builds the source as an array of lines: the #version line, the scene's #defines, then the file with each
+ * `#include "x.glsl"` replaced by that embedded file. #line directives keep the driver's messages pointing at the
+ * right file (source string 0 = the main file, 1.. = its includes in order) and line. */
 static GLuint compile(const cu_gl *gl, GLenum type, const cu_shader_src *src, const char *defines, cu_error *err)
 {
-    /* Line 0 is the #version line; the scene's #defines go right after it, then a #line directive so the
-     * driver's messages keep the file's own line numbers. */
-    int n = src->nlines + 2;
-    const char **parts = malloc(sizeof *parts * (size_t)n);
-    if (!parts) {
+    int cap = src->nlines + 8;
+    for (int i = 1; i < src->nlines; i++)
+        if (strncmp(src->lines[i], "#include \"", 10) == 0) {
+            char name[64];
+            if (sscanf(src->lines[i] + 10, "%63[^\"]", name) == 1 && cu_shader_find(name))
+                cap += cu_shader_find(name)->nlines + 2;
+        }
+    const char **parts = malloc(sizeof *parts * (size_t)cap);
+    char(*dirs)[40] = malloc(sizeof *dirs * (size_t)cap);
+    char names[256];
+    snprintf(names, sizeof names, "0 %s", src->name);
+    if (!parts || !dirs) {
+        free(parts);
+        free(dirs);
         snprintf(err->msg, sizeof err->msg, "shaders_gles/%s: out of memory", src->name);
         return 0;
     }
-    parts[0] = src->lines[0];
-    parts[1] = defines ? defines : "";
-    parts[2] = "#line 2\n";
-    for (int i = 1; i < src->nlines; i++)
-        parts[i + 2] = src->lines[i];
+    int n = 0, nd = 0, nfile = 0;
+    parts[n++] = src->lines[0];
+    parts[n++] = defines ? defines : "";
+    parts[n++] = "#line 2 0\n";
+    for (int i = 1; i < src->nlines; i++) {
+        if (strncmp(src->lines[i], "#include \"", 10) != 0) {
+            parts[n++] = src->lines[i];
+            continue;
+        }
+        char name[64] = "";
+        const cu_shader_src *inc = NULL;
+        if (sscanf(src->lines[i] + 10, "%63[^\"]", name) == 1)
+            inc = cu_shader_find(name);
+        if (!inc) {
+            snprintf(err->msg, sizeof err->msg, "shaders_gles/%s:%d: cannot include '%s'", src->name, i + 1, name);
+            free(parts);
+            free(dirs);
+            return 0;
+        }
+        nfile++;
+        size_t l = strlen(names);
+        snprintf(names + l, sizeof names - l, ", %d %s", nfile, inc->name);
+        snprintf(dirs[nd], sizeof dirs[nd], "#line 1 %d\n", nfile);
+        parts[n++] = dirs[nd++];
+        for (int k = 0; k < inc->nlines; k++)
+            parts[n++] = inc->lines[k];
+        snprintf(dirs[nd], sizeof dirs[nd], "#line %d 0\n", i + 2);
+        parts[n++] = dirs[nd++];
+    }
     GLuint sh = gl->CreateShader(type);
     gl->ShaderSource(sh, n, parts, NULL);
     free(parts);
+    free(dirs);
     gl->CompileShader(sh);
     GLint ok = 0;
     gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[400] = "";
+        char log[300] = "";
         gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
         for (char *c = log; *c; c++)
             if (*c == '\n') *c = ' ';
-        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s: compile failed: %s", src->name, log);
+        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s (sources %s): compile failed: %s", src->name, names, log);
         gl->DeleteShader(sh);
         return 0;
     }

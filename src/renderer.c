@@ -1,6 +1,7 @@
 /* src/renderer.c: renderer lifetime, scene upload (shader variants for exactly the scene's features, textures,
  * hull meshes) and the frame: sun pass, sky pass, depth pre-pass, cloud pass (GL_EQUAL), tone map. */
 #include "renderer.h"
+#include "sunmap.h"
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -99,7 +100,7 @@ const char *cu_renderer_gl_string(const cu_renderer *r, int which)
 
 static void delete_programs(cu_renderer *r)
 {
-    GLuint *p[] = {&r->prog_sun, &r->prog_sun_back, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
+    GLuint *p[] = {&r->prog_sun, &r->prog_sun_back, &r->prog_sun_opacity, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
                    &r->prog_copy};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (*p[i]) {
@@ -112,11 +113,14 @@ static void delete_scene_objects(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
     delete_programs(r);
-    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->sun_back_tex, r->hdr_tex};
-    for (size_t i = 0; i < 5; i++)
+    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->sun_back_tex, r->hdr_tex, r->sun_layers_tex,
+                    r->sun_tau_tex};
+    for (size_t i = 0; i < sizeof tex / sizeof tex[0]; i++)
         if (tex[i])
             gl->DeleteTextures(1, &tex[i]);
-    r->noise_tex = r->phase_tex = r->sun_tex = r->sun_back_tex = r->hdr_tex = 0;
+    r->noise_tex = r->phase_tex = r->sun_tex = r->sun_back_tex = r->hdr_tex = r->sun_layers_tex = r->sun_tau_tex = 0;
+    if (r->sun_opacity_fbo) gl->DeleteFramebuffers(1, &r->sun_opacity_fbo);
+    r->sun_opacity_fbo = 0;
     if (r->sun_fbo) gl->DeleteFramebuffers(1, &r->sun_fbo);
     if (r->sun_back_fbo) gl->DeleteFramebuffers(1, &r->sun_back_fbo);
     r->sun_back_fbo = 0;
@@ -264,10 +268,12 @@ static int build_programs(cu_renderer *r, cu_error *err)
     snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
-             "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n",
+             "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
+             "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
              s->profile == CU_PROFILE_KOL, (int)s->ms_mode, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
-             s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE);
+             s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, r->shadow == CU_SHADOW_PEEL, s->sun_intervals,
+             s->sun_filter, s->sun_samples);
     char fs_defs[1100], hull_defs[1100], lin[1100], back_defs[1100];
     snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n#define SUN_BACK 0\n", defs);
     snprintf(back_defs, sizeof back_defs, "%s#define FULLSCREEN 0\n#define SUN_BACK 1\n", defs);
@@ -275,7 +281,13 @@ static int build_programs(cu_renderer *r, cu_error *err)
     snprintf(lin, sizeof lin, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 1\n", defs);
     if (r->need_sun_back && !(r->prog_sun_back = hull_program(r, "sun_depth.frag", back_defs, err)))
         return 1;
-    if (!(r->prog_sun = hull_program(r, "sun_depth.frag", hull_defs, err)) ||
+    if (r->shadow == CU_SHADOW_PEEL) {
+        if (!(r->prog_sun_opacity = cu_gl_program(&r->gl, "fullscreen.vert", "sun_opacity.frag", fs_defs, err)))
+            return 1;
+    } else if (!(r->prog_sun = hull_program(r, "sun_depth.frag", hull_defs, err))) {
+        return 1;
+    }
+    if (
         !(r->prog_depth = hull_program(r, "depth.frag", hull_defs, err)) ||
         !(r->prog_cloud = hull_program(r, "cloud.frag", hull_defs, err)) ||
         !(r->prog_cloud_fs = cu_gl_program(&r->gl, "fullscreen.vert", "cloud.frag", fs_defs, err)) ||
@@ -311,9 +323,38 @@ static int make_depth_target(cu_renderer *r, GLuint *tex, GLuint *fbo, cu_error 
     return 0;
 }
 
+static GLuint make_float_texture(cu_gl *gl, int w, int h)
+{
+    GLuint t;
+    gl->GenTextures(1, &t);
+    gl->BindTexture(GL_TEXTURE_2D, t);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, w, h, 0, GL_RGBA, GL_FLOAT, NULL);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
 static int make_sun_map(cu_renderer *r, cu_error *err)
 {
+    cu_gl *gl = &r->gl;
     r->sun_size = r->scene.sun_map_size;
+    if (r->shadow == CU_SHADOW_PEEL) {
+        /* The opacity map: one tile per interval, side by side, two RGBA32F targets written in one pass. */
+        int w = r->sun_size * r->scene.sun_intervals, h = r->sun_size;
+        r->sun_layers_tex = make_float_texture(gl, w, h);
+        r->sun_tau_tex = make_float_texture(gl, w, h);
+        gl->GenFramebuffers(1, &r->sun_opacity_fbo);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_opacity_fbo);
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->sun_layers_tex, 0);
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, r->sun_tau_tex, 0);
+        GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+        gl->DrawBuffers(2, bufs);
+        GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (st != GL_FRAMEBUFFER_COMPLETE)
+            return fail(err, "sun opacity map: framebuffer incomplete (0x%x)", st);
+        return 0;
+    }
     if (make_depth_target(r, &r->sun_tex, &r->sun_fbo, err))
         return 1;
     /* The back map exists only when a term needs the thickness along the sun ray. */
@@ -331,7 +372,14 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         return 1;
     cu_cloud_build(&r->cloud, &r->scene, &r->noise);
     cu_sky_compute(&r->sky, &r->scene);
-    r->need_sun_back = r->scene.ms_mode == CU_MS_DIFFUSION;
+    r->shadow = r->scene.shadow;
+    if (r->shadow == CU_SHADOW_PEEL && !r->float_rt) {
+        /* The opacity map needs float colour targets (EXT_color_buffer_float); without them Kol's estimate. */
+        cu_log(r, CU_LOG_WARN, "light.shadow = peel needs float render targets, which this context lacks: "
+                               "using the front-depth estimate");
+        r->shadow = CU_SHADOW_FRONT;
+    }
+    r->need_sun_back = r->shadow == CU_SHADOW_FRONT && r->scene.ms_mode == CU_MS_DIFFUSION;
     cu_sky_white_balance(&r->scene, r->white);
     if (upload_phase(r, err) || build_programs(r, err) || make_sun_map(r, err))
         return 1;
@@ -383,15 +431,47 @@ static void set_ellipsoid_uniforms(cu_renderer *r, GLuint p)
 
 static void sun_basis(const cu_renderer *r, vec3 *right, vec3 *up)
 {
-    vec3 d = r->sky.sun_dir;
-    vec3 ref = fabs(d.y) < 0.99 ? v3(0, 1, 0) : v3(1, 0, 0);
-    *right = v3_norm(v3_cross(ref, d));
-    *up = v3_cross(d, *right);
+    cu_sun_basis(r->sky.sun_dir, right, up);
 }
 
 static double sun_R(const cu_renderer *r)
 {
-    return r->cloud.bound_radius * 1.01 + 1.0;
+    return cu_sun_radius(&r->cloud);
+}
+
+/* Uniforms of density.glsl: ellipsoids, extinction, boundary, noise. */
+static void set_density_uniforms(cu_renderer *r, GLuint p)
+{
+    cu_gl *gl = &r->gl;
+    set_ellipsoid_uniforms(r, p);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_ke"), (float)r->cloud.ke);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_h"), (float)(r->cloud.h > 1e-6 ? r->cloud.h : 1e-6));
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_noise_freq"), (float)r->cloud.noise_freq);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_noise_offset"), (float)r->cloud.noise_offset.x,
+                  (float)r->cloud.noise_offset.y, (float)r->cloud.noise_offset.z);
+    float means[5];
+    for (int i = 0; i < 5; i++)
+        means[i] = (float)r->noise.level_mean[i];
+    gl->Uniform1fv(gl->GetUniformLocation(p, "u_noise_mean"), 5, means);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_noise"), 0);
+}
+
+/* Uniforms of sunmap.glsl (and the opacity pass): the sun-space frame and the maps' texture units 2 and 3. */
+static void set_sun_uniforms(cu_renderer *r, GLuint p)
+{
+    cu_gl *gl = &r->gl;
+    vec3 sd = r->sky.sun_dir;
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_dir"), (float)sd.x, (float)sd.y, (float)sd.z);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_right"), (float)r->sun_right.x, (float)r->sun_right.y,
+                  (float)r->sun_right.z);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_up"), (float)r->sun_up.x, (float)r->sun_up.y, (float)r->sun_up.z);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_sun_R"), (float)sun_R(r));
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_size"), r->sun_size);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_intervals"), r->sun_intervals);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_layers"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_tau"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_back"), 3);
 }
 
 static void sun_pass(cu_renderer *r)
@@ -399,6 +479,30 @@ static void sun_pass(cu_renderer *r)
     cu_gl *gl = &r->gl;
     double R = sun_R(r);
     sun_basis(r, &r->sun_right, &r->sun_up);
+    gl->Disable(GL_CULL_FACE);
+    gl->Disable(GL_BLEND);
+    if (r->shadow == CU_SHADOW_PEEL) {
+        /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
+        int J = cu_sun_max_intervals(&r->cloud, r->sky.sun_dir, 64);
+        r->sun_intervals = J < 1 ? 1 : J > r->scene.sun_intervals ? r->scene.sun_intervals : J;
+        if (J > r->scene.sun_intervals)
+            cu_log(r, CU_LOG_INFO, "sun rays cross up to %d cloud intervals; the map keeps the first %d "
+                                   "(light.sun_intervals)", J, r->scene.sun_intervals);
+        GLuint p = r->prog_sun_opacity;
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_opacity_fbo);
+        gl->Viewport(0, 0, r->sun_size * r->sun_intervals, r->sun_size);
+        gl->Disable(GL_DEPTH_TEST);
+        gl->UseProgram(p);
+        set_density_uniforms(r, p);
+        set_sun_uniforms(r, p);
+        gl->ActiveTexture(GL_TEXTURE0);
+        gl->BindTexture(GL_TEXTURE_3D, r->noise_tex);
+        gl->BindVertexArray(r->empty_vao);
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        gl->BindVertexArray(0);
+        r->sun_dirty = 0;
+        return;
+    }
     vec3 eye = v3_scale(r->sky.sun_dir, 2.0 * R);
     mat4 view = m4_look_dir(eye, v3_scale(r->sky.sun_dir, -1.0), r->sun_up);
     mat4 proj = m4_ortho(-R, R, -R, R, 0.0, 4.0 * R);
@@ -407,8 +511,6 @@ static void sun_pass(cu_renderer *r)
     gl->Viewport(0, 0, r->sun_size, r->sun_size);
     gl->DepthMask(GL_TRUE);
     gl->Enable(GL_DEPTH_TEST);
-    gl->Disable(GL_CULL_FACE);
-    gl->Disable(GL_BLEND);
     gl->BindVertexArray(r->hull_vao);
     for (int back = 0; back <= r->need_sun_back; back++) {
         GLuint prog = back ? r->prog_sun_back : r->prog_sun;
@@ -494,35 +596,18 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_viewproj"), 1, GL_FALSE, inv_vp);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_cam"), (float)cam.x, (float)cam.y, (float)cam.z);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_bound_R"), (float)r->cloud.bound_radius);
-    set_ellipsoid_uniforms(r, p);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_ke"), (float)r->cloud.ke);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_h"), (float)(r->cloud.h > 1e-6 ? r->cloud.h : 1e-6));
+    set_density_uniforms(r, p);
+    set_sun_uniforms(r, p);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_seg_ratio"), (float)s->segment_ratio);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_noise_freq"), (float)r->cloud.noise_freq);
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_noise_offset"), (float)r->cloud.noise_offset.x,
-                  (float)r->cloud.noise_offset.y, (float)r->cloud.noise_offset.z);
-    float means[5];
-    for (int i = 0; i < 5; i++)
-        means[i] = (float)r->noise.level_mean[i];
-    gl->Uniform1fv(gl->GetUniformLocation(p, "u_noise_mean"), 5, means);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_noise"), 0);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_back"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_phase_n"), CU_PHASE_N);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_irr"), (float)r->sky.sun_irradiance[0],
+                  (float)r->sky.sun_irradiance[1], (float)r->sky.sun_irradiance[2]);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_ms_abc"), (float)s->ms_a, (float)s->ms_b, (float)s->ms_c);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
     gl->Uniform1f(gl->GetUniformLocation(p, "u_one_minus_g"), (float)(1.0 - r->phase_g_eff));
     gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
                   (float)r->peak_f[2]);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_phase_n"), CU_PHASE_N);
-    vec3 sd = r->sky.sun_dir;
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_dir"), (float)sd.x, (float)sd.y, (float)sd.z);
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_irr"), (float)r->sky.sun_irradiance[0],
-                  (float)r->sky.sun_irradiance[1], (float)r->sky.sun_irradiance[2]);
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_right"), (float)r->sun_right.x, (float)r->sun_right.y,
-                  (float)r->sun_right.z);
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_up"), (float)r->sun_up.x, (float)r->sun_up.y, (float)r->sun_up.z);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_sun_R"), (float)sun_R(r));
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_ms_abc"), (float)s->ms_a, (float)s->ms_b, (float)s->ms_c);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
 }
 
 int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
@@ -602,9 +687,9 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->ActiveTexture(GL_TEXTURE1);
     gl->BindTexture(GL_TEXTURE_2D, r->phase_tex);
     gl->ActiveTexture(GL_TEXTURE2);
-    gl->BindTexture(GL_TEXTURE_2D, r->sun_tex);
+    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_layers_tex : r->sun_tex);
     gl->ActiveTexture(GL_TEXTURE3);
-    gl->BindTexture(GL_TEXTURE_2D, r->sun_back_tex);
+    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_tau_tex : r->sun_back_tex);
     gl->ActiveTexture(GL_TEXTURE0);
 
     int inside = camera_inside_hull(r, cam, znear);

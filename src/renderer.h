@@ -26,7 +26,10 @@ struct cu_renderer {
 
     GLuint noise_tex, phase_tex;
     GLuint sun_tex, sun_fbo;
-    GLuint sun_back_tex, sun_back_fbo; /* only when a term needs the in-cloud thickness along the sun */
+    GLuint sun_back_tex, sun_back_fbo; /* front method only, when a term needs the thickness along the sun */
+    int shadow;                        /* the method in use (the scene's, or front when peel cannot run) */
+    GLuint sun_layers_tex, sun_tau_tex, sun_opacity_fbo; /* peel: the opacity map, tiles of intervals */
+    int sun_intervals;                 /* intervals present for the current sun direction */
     int need_sun_back;
     double white[3];                   /* white balance of the tone mapper (sky.h) */
     double phase_g_eff;                /* mean cosine of the phase function in use */
@@ -38,7 +41,7 @@ struct cu_renderer {
     GLuint hull_vbo, hull_ibo, inst_vbo, hull_vao, empty_vao;
     int hull_indices;
 
-    GLuint prog_sun, prog_sun_back, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
+    GLuint prog_sun, prog_sun_back, prog_sun_opacity, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
 
     GLuint hdr_fbo, hdr_tex, hdr_depth;
     int hdr_w, hdr_h;

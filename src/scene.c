@@ -30,7 +30,8 @@ static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
 static const char *const profile_names[] = {"tapered", "kol", NULL};
 static const char *const ms_names[] = {"none", "octaves", "diffusion", NULL};
 static const char *const sky_names[] = {"preetham", "constant", NULL};
-static const char *const shadow_names[] = {"front", NULL};
+static const char *const shadow_names[] = {"peel", "front", NULL};
+static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 
 #define S(f) offsetof(cu_scene, f)
@@ -65,6 +66,9 @@ static const key_def keys[] = {
     {"quality", "noise_octaves", K_INT, 1, S(noise_octaves), 1, 5, 0, NULL, ""},
     {"quality", "sun_map_size", K_INT, 1, S(sun_map_size), 16, 4096, 0, NULL, "texels"},
     {"light", "shadow", K_ENUM, 1, S(shadow), 0, 0, 0, shadow_names, ""},
+    {"light", "sun_intervals", K_INT, 1, S(sun_intervals), 1, 4, 0, NULL, ""},
+    {"light", "sun_samples", K_INT, 1, S(sun_samples), 4, 64, 0, NULL, ""},
+    {"light", "sun_filter", K_ENUM, 1, S(sun_filter), 0, 0, 0, filter_names, ""},
     {"ms", "mode", K_ENUM, 1, S(ms_mode), 0, 0, 0, ms_names, ""},
     {"ms", "octaves", K_INT, 1, S(ms_octaves), 1, 8, 0, NULL, ""},
     {"ms", "a", K_DOUBLE, 1, S(ms_a), 0, 1, 0, NULL, ""},
@@ -102,7 +106,10 @@ void cu_scene_defaults(cu_scene *s)
     s->noise = 1;
     s->noise_octaves = 5;
     s->sun_map_size = 256;
-    s->shadow = CU_SHADOW_FRONT;
+    s->shadow = CU_SHADOW_PEEL;
+    s->sun_intervals = 3;
+    s->sun_samples = 32;
+    s->sun_filter = 1;
     s->ms_mode = CU_MS_DIFFUSION;
     s->ms_octaves = 4;
     s->ms_a = 0.5;
@@ -260,6 +267,8 @@ static int post_checks(cu_scene *s, const char *file, int have_sections[], const
         if (!ell_seen[e][1])
             return fail(err, "%s:%d:1: [ellipsoid] #%d has no 'radii'", file, ell_line[e], e + 1);
     }
+    if (s->sun_samples % 4)
+        return fail(err, "%s: [light] 'sun_samples' must be a multiple of 4, got %d", file, s->sun_samples);
     double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
     if (dx * dx + dy * dy + dz * dz < 1e-12)
         return fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", file);
@@ -477,8 +486,13 @@ int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
     char label[600];
     snprintf(label, sizeof label, "--set %.40s.%.40s", section, key);
     w.file = label;
+    int old_samples = s->sun_samples;
     if (parse_value(k, key_target(s, k, ell), val, w, 0, err))
         return 1;
+    if (s->sun_samples % 4) {
+        s->sun_samples = old_samples;
+        return fail(err, "--set light.sun_samples: must be a multiple of 4");
+    }
     if (strcmp(section, "sun") == 0 && strcmp(key, "irradiance") == 0)
         s->has_sun_irradiance = 1;
     return 0;

@@ -15,7 +15,7 @@ typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MI
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
 typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_DIFFUSION } cu_ms_mode;
 typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
-typedef enum cu_shadow_method { CU_SHADOW_FRONT } cu_shadow_method;
+typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT } cu_shadow_method;
 
 struct cu_scene {
     char name[256];
@@ -55,6 +55,9 @@ struct cu_scene {
     int sun_map_size;         /* texels per side */
     /* [light] */
     cu_shadow_method shadow;
+    int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */
+    int sun_samples;          /* trapezoid segments per interval in the opacity pass (multiple of 4) */
+    int sun_filter;           /* 0 nearest, 1 bilinear lookup of the opacity map */
     /* [ms] */
     cu_ms_mode ms_mode;
     int ms_octaves;

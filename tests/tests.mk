@@ -30,6 +30,11 @@ $(B)/test_extremes: tests/test_extremes.c tests/render_util.c $(HEADLESS_SRCS) $
 	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_extremes
 
+$(B)/test_sunmap: tests/test_sunmap.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
+	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_sunmap.c tests/render_util.c $(HEADLESS_SRCS) \
+	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_sunmap
+
 # The long versions of the stability tests (larger images, finer sweeps).
 stress: all $(B)/test_extremes
 	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes

@@ -1,0 +1,53 @@
+#version 300 es
+// shaders_gles/sun_opacity.frag: the sun's opacity map (DESIGN "Sun transmittance"). For each sun-map texel, the ray
+// from the sun is cast through every ellipsoid, its chords are merged into the union's intervals (the surfaces a
+// depth peel would find, but exact: the ellipsoids are analytic, so no hull rasterisation, no polygonal depths and no
+// peel passes are needed), and the real density, noise included, is integrated through interval j = the tile this
+// fragment lies in. Output: target 0 (z_entry, z_exit) in metres from the sun plane; target 1: tau at 1/4, 1/2, 3/4
+// and 1 of the interval. SUN_SAMPLES (a multiple of 4) uniform trapezoid segments per interval.
+#include "density.glsl"
+uniform vec3 u_sun_dir, u_sun_right, u_sun_up;
+uniform float u_sun_R;
+uniform int u_sun_size;
+layout(location = 0) out vec4 o_layers;
+layout(location = 1) out vec4 o_tau;
+
+void main()
+{
+    ivec2 fc = ivec2(gl_FragCoord.xy);
+    int j = fc.x / u_sun_size;
+    vec2 uv = (vec2(float(fc.x - j * u_sun_size), float(fc.y)) + 0.5) / float(u_sun_size);
+    vec2 xy = (uv * 2.0 - 1.0) * u_sun_R;
+    vec3 ro = u_sun_right * xy.x + u_sun_up * xy.y + u_sun_dir * (2.0 * u_sun_R);
+    vec3 dir = -u_sun_dir;
+    cast_ray(ro, dir);
+    float a = 0.0, b = 0.0;
+    int merged, k = 0;
+    for (int i = 0; i <= j; i++) {
+        if (k >= n_hits) {
+            o_layers = vec4(1e30, 1e30, 0.0, 0.0);
+            o_tau = vec4(0.0);
+            return;
+        }
+        k = next_interval(k, a, b, merged);
+    }
+    // the end samples a hair inside, as in cloud.frag, so a boundary h -> 0 still sees the core
+    float len = b - a;
+    float nudge = min(1e-3 * len, 0.05);
+    float x = len / float(SUN_SAMPLES);
+    float ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
+    float tau = 0.0;
+    vec4 q = vec4(0.0);
+    for (int i = 1; i <= SUN_SAMPLES; i++) {
+        float t = (i == SUN_SAMPLES) ? b - nudge : a + x * float(i);
+        float ke = extinction(ro + dir * t, t);
+        tau += x * 0.5 * (ke_prev + ke);
+        ke_prev = ke;
+        if (i == SUN_SAMPLES / 4) q.x = tau;
+        if (i == SUN_SAMPLES / 2) q.y = tau;
+        if (i == 3 * SUN_SAMPLES / 4) q.z = tau;
+    }
+    q.w = tau;
+    o_layers = vec4(a, b, 0.0, 0.0);
+    o_tau = q;
+}

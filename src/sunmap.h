@@ -1,0 +1,15 @@
+/* src/sunmap.h: CPU side of the sun's opacity map: how many separate in-cloud intervals a sun ray can cross (the map's
+ * layer count follows the scene), and the sun-space frame shared with the shaders. */
+#ifndef CU_SUNMAP_H
+#define CU_SUNMAP_H
+#include "density.h"
+
+/* The most intervals of the ellipsoid union along any of grid x grid sun rays over the cloud's bounds. */
+int cu_sun_max_intervals(const cu_cloud *cl, vec3 sun_dir, int grid);
+/* Orthonormal basis of the sun plane (right, up), stable for every sun direction including the zenith. */
+void cu_sun_basis(vec3 sun_dir, vec3 *right, vec3 *up);
+/* Half-size R of the sun maps: the plane sits at 2R along the sun direction, depths span 4R. */
+double cu_sun_radius(const cu_cloud *cl);
+/* Number of union intervals along the ray o + t d, and their ends (up to max). */
+int cu_union_intervals(const cu_cloud *cl, vec3 o, vec3 d, double *a, double *b, int max);
+#endif
