@@ -16,7 +16,7 @@
 
 static const char usage[] =
     "usage: cumulo-pt SCENE -o OUT.pfm [--spp N] [--threads N] [--seed S] [--size WxH] [--set section.key=value]...\n"
-    "                 [--max-depth N] [--aa] [--mode radiance|transmittance] [--quiet]\n"
+    "                 [--max-depth N] [--aa] [--mode radiance|transmittance] [--peak-mis P] [--quiet]\n"
     "                 [--dump-density FILE [--grid NX,NY,NZ]]\n";
 
 /* Whole-string unsigned integer in [lo, hi]; 0 on success. */
@@ -53,12 +53,13 @@ int main(int argc, char **argv)
     int nsets = 0, quiet = 0, aa = 0, width = 0, height = 0, grid[3] = {128, 128, 128}, have_grid = 0;
     unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0;
     pt_mode mode = PT_MODE_RADIANCE;
+    double peak_mis = PT_GUIDE_DEFAULT;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int takes = strcmp(a, "-o") == 0 || strcmp(a, "--spp") == 0 || strcmp(a, "--threads") == 0 ||
                     strcmp(a, "--seed") == 0 || strcmp(a, "--size") == 0 || strcmp(a, "--set") == 0 ||
                     strcmp(a, "--max-depth") == 0 || strcmp(a, "--mode") == 0 || strcmp(a, "--dump-density") == 0 ||
-                    strcmp(a, "--grid") == 0;
+                    strcmp(a, "--grid") == 0 || strcmp(a, "--peak-mis") == 0;
         if (takes && i + 1 >= argc)
             return bad("%s needs a value%s", a, "");
         const char *v = takes ? argv[++i] : NULL;
@@ -95,6 +96,12 @@ int main(int argc, char **argv)
                 mode = PT_MODE_TRANSMITTANCE;
             else
                 return bad("--mode must be radiance or transmittance, got '%s'%s", v, "");
+        } else if (strcmp(a, "--peak-mis") == 0) {
+            char *end;
+            errno = 0;
+            peak_mis = strtod(v, &end);
+            if (end == v || *end || errno || !(peak_mis >= 0 && peak_mis <= 1))
+                return bad("--peak-mis expects a probability in [0, 1], got '%s'%s", v, "");
         } else if (strcmp(a, "--dump-density") == 0) {
             dump = v;
         } else if (strcmp(a, "--grid") == 0) {
@@ -154,6 +161,7 @@ int main(int argc, char **argv)
         return 1;
     }
     c->max_depth = (int)max_depth;
+    c->guide = peak_mis;
     int rc = 0;
     if (dump) {
         if (pt_dump_density(c, dump, grid[0], grid[1], grid[2], PT_NOISE_SEED, &e)) {

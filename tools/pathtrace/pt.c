@@ -109,6 +109,34 @@ int pt_phase_init(pt_phase *ph, const cu_phase_table *t, cu_error *err)
         }
         ph->cdf[c][ph->n - 1] = 1.0;
     }
+    /* The green channel's removed peak P_p as a sampling lobe for guiding toward the sun (Mie only). */
+    if (t->peak) {
+        ph->gf = malloc(sizeof(double) * (size_t)ph->n);
+        ph->gcdf = malloc(sizeof(double) * (size_t)ph->n);
+        if (!ph->gf || !ph->gcdf) {
+            pt_phase_free(ph);
+            return fail(err, "%s", "path tracer: out of memory");
+        }
+        double sum = 0;
+        for (int i = 0; i < ph->n; i++)
+            ph->gf[i] = (i == 0 || i == ph->n - 1) ? 0.0 : 2.0 * CU_PI * sin(ph->h * i) * t->peak[3 * i + 1];
+        ph->gcdf[0] = 0;
+        for (int i = 0; i + 1 < ph->n; i++) {
+            sum += 0.5 * ph->h * (ph->gf[i] + ph->gf[i + 1]);
+            ph->gcdf[i + 1] = sum;
+        }
+        if (sum > 0) {
+            for (int i = 0; i < ph->n; i++) {
+                ph->gf[i] /= sum;
+                ph->gcdf[i] /= sum;
+            }
+            ph->gcdf[ph->n - 1] = 1.0;
+        } else { /* no peak to guide with */
+            free(ph->gf);
+            free(ph->gcdf);
+            ph->gf = ph->gcdf = NULL;
+        }
+    }
     return 0;
 }
 
@@ -119,6 +147,9 @@ void pt_phase_free(pt_phase *ph)
         free(ph->cdf[c]);
         ph->f[c] = ph->cdf[c] = NULL;
     }
+    free(ph->gf);
+    free(ph->gcdf);
+    ph->gf = ph->gcdf = NULL;
 }
 
 /* The normalised density over theta (f = 2 pi sin p), linear between nodes. */
@@ -157,55 +188,88 @@ void pt_phase_eval_dirs(const pt_phase *ph, vec3 a, vec3 b, double out[3])
     out[2] = pt_phase_eval(ph, 2, th, st);
 }
 
-static double sample_theta(const pt_phase *ph, int c, double r)
+/* Inverts the piecewise-linear CDF (cdf, f over n nodes of spacing h) at r in [0, 1). */
+static double sample_theta(const double *cdf, const double *f, int n, double h, double r)
 {
-    const double *cdf = ph->cdf[c], *f = ph->f[c];
-    int lo = 0, hi = ph->n - 1; /* cdf[lo] <= r < cdf[hi] */
+    int lo = 0, hi = n - 1; /* cdf[lo] <= r < cdf[hi] */
     while (hi - lo > 1) {
         int mid = (lo + hi) / 2;
         if (cdf[mid] <= r) lo = mid;
         else hi = mid;
     }
     /* Inside the bin f(x) = a + b x; solve a x + b x^2 / 2 = m in the cancellation-free form. */
-    double m = r - cdf[lo], a = f[lo], b = (f[lo + 1] - f[lo]) / ph->h;
+    double m = r - cdf[lo], a = f[lo], b = (f[lo + 1] - f[lo]) / h;
     double disc = a * a + 2.0 * b * m;
     double den = a + sqrt(disc > 0 ? disc : 0);
     double x = den > 0 ? 2.0 * m / den : 0.0;
-    if (x > ph->h) x = ph->h;
+    if (x > h) x = h;
     if (x < 0) x = 0;
-    return lo * ph->h + x;
+    return lo * h + x;
 }
 
-vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3])
+/* Unit vector at polar angle th and azimuth phi about the unit axis a (basis of Duff et al. 2017). */
+static vec3 around(vec3 a, double th, double phi)
+{
+    double sign = copysign(1.0, a.z), p = -1.0 / (sign + a.z), q = a.x * a.y * p;
+    vec3 t1 = v3(1.0 + sign * a.x * a.x * p, sign * q, -sign * a.x);
+    vec3 t2 = v3(q, sign + a.y * a.y * p, -a.y);
+    double st = sin(th), ct = cos(th);
+    vec3 o = v3_add(v3_add(v3_scale(t1, st * cos(phi)), v3_scale(t2, st * sin(phi))), v3_scale(a, ct));
+    return v3_norm(o); /* renormalise so rounding cannot accumulate over thousands of events */
+}
+
+/* Density (sr^-1) of the guide lobe: the green channel's diffraction peak P_p / f, centred on the sun. */
+double pt_phase_peak_pdf(const pt_phase *ph, vec3 guide, vec3 dir)
+{
+    double st = v3_len(v3_cross(guide, dir)), th = atan2(st, v3_dot(guide, dir));
+    if (th >= (ph->n - 1) * ph->h)
+        return 0.0;
+    double u = th / ph->h;
+    int i = (int)u;
+    if (i > ph->n - 2) i = ph->n - 2;
+    double a = u - i, fl = ph->gf[i] + a * (ph->gf[i + 1] - ph->gf[i]);
+    if (st < 1e-300)
+        return th < 0.5 * CU_PI ? ph->gf[1] / (2.0 * CU_PI * ph->h) : 0.0;
+    return fl / (2.0 * CU_PI * st);
+}
+
+vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3], double *pdf)
 {
     int k = 0;
     if (!ph->mono) {
         k = (int)(3.0 * pt_rng_uniform(rng));
         if (k > 2) k = 2;
     }
-    double th = sample_theta(ph, k, pt_rng_uniform(rng));
-    double phi = 2.0 * CU_PI * pt_rng_uniform(rng);
+    double th = sample_theta(ph->cdf[k], ph->f[k], ph->n, ph->h, pt_rng_uniform(rng));
+    vec3 o = around(d, th, 2.0 * CU_PI * pt_rng_uniform(rng));
     if (ph->mono) {
-        w[0] = w[1] = w[2] = 1.0;
-    } else {
-        /* One-sample MIS over channels: the mixture pdf is (1/3) sum p_c, so the weight is bounded by 3 and has
-         * expectation 1 in each channel; the sin(theta) Jacobian cancels in the ratio. */
-        double fc[3], mix = 0;
-        for (int c = 0; c < 3; c++) {
-            fc[c] = f_at(ph, c, th);
-            mix += fc[c];
-        }
-        mix /= 3.0;
-        for (int c = 0; c < 3; c++)
-            w[c] = mix > 0 ? fc[c] / mix : 1.0;
+        w[0] = w[1] = w[2] = 1.0; /* exactly: the furnace test relies on it */
+        if (pdf)
+            *pdf = pt_phase_eval(ph, 0, th, sin(th));
+        return o;
     }
-    /* Orthonormal basis about d (Duff et al. 2017), then the new direction. */
-    double sign = copysign(1.0, d.z), a = -1.0 / (sign + d.z), b = d.x * d.y * a;
-    vec3 t1 = v3(1.0 + sign * d.x * d.x * a, sign * b, -sign * d.x);
-    vec3 t2 = v3(b, sign + d.y * d.y * a, -d.y);
-    double st = sin(th), ct = cos(th);
-    vec3 o = v3_add(v3_add(v3_scale(t1, st * cos(phi)), v3_scale(t2, st * sin(phi))), v3_scale(d, ct));
-    return v3_norm(o); /* renormalise so rounding cannot accumulate over thousands of events */
+    /* One-sample MIS over channels: the mixture pdf is (1/3) sum p_c, so the weight is bounded by 3 and has
+     * expectation 1 in each channel; the sin(theta) Jacobian cancels in the ratio. */
+    double fc[3], mix = 0;
+    for (int c = 0; c < 3; c++) {
+        fc[c] = f_at(ph, c, th);
+        mix += fc[c];
+    }
+    mix /= 3.0;
+    for (int c = 0; c < 3; c++)
+        w[c] = mix > 0 ? fc[c] / mix : 1.0;
+    if (pdf) {
+        double st = sin(th);
+        *pdf = st > 1e-300 ? mix / (2.0 * CU_PI * st)
+                           : (pt_phase_eval(ph, 0, th, 0) + pt_phase_eval(ph, 1, th, 0) + pt_phase_eval(ph, 2, th, 0)) / 3;
+    }
+    return o;
+}
+
+vec3 pt_phase_sample_peak(const pt_phase *ph, vec3 axis, pt_rng *rng)
+{
+    double th = sample_theta(ph->gcdf, ph->gf, ph->n, ph->h, pt_rng_uniform(rng));
+    return around(axis, th, 2.0 * CU_PI * pt_rng_uniform(rng));
 }
 
 /* ---------------------------------------------------------------- context */
@@ -235,6 +299,7 @@ int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *er
         c->sun_irr[i] = c->sky.sun_irradiance[i];
     c->env = PT_ENV_SCENE;
     c->max_depth = 1000000;
+    c->guide = PT_GUIDE_DEFAULT;
     c->cam = v3_sub(v3_from(s->cam_pos), c->cloud.origin);
     vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
     c->width = s->width;
@@ -397,11 +462,38 @@ static void environment(const pt_ctx *c, vec3 d, int camera_ray, double out[3])
             out[i] += c->sun_irr[i] / PT_SUN_SR;
 }
 
+/* Strategy B of the sun's forward-peak MIS (README "Variance: the forward peak"): from vertex p with incoming
+ * direction d and throughput beta, pick a direction in the sun's diffraction lobe, track to the next collision and
+ * take the sun there, weighted by the balance heuristic against strategy A (the ordinary continuation). */
+static void peak_nee(const pt_ctx *c, vec3 p, vec3 d, const double beta[3], pt_rng *rng, double L[3], pt_counters *k)
+{
+    const pt_phase *ph = &c->phase;
+    vec3 d2 = pt_phase_sample_peak(ph, c->sun_dir, rng);
+    double qb = pt_phase_peak_pdf(ph, c->sun_dir, d2);
+    double pa[3];
+    pt_phase_eval_dirs(ph, d, d2, pa);
+    double qa = (pa[0] + pa[1] + pa[2]) / 3.0; /* strategy A's mixture pdf for d2 */
+    vec3 p2;
+    if (!(qb > 0) || !track(c, p, d2, rng, &p2, k))
+        return;
+    double T = pt_transmittance(c, p2, c->sun_dir, rng, k);
+    if (!(T > 0))
+        return;
+    double ps[3];
+    pt_phase_eval_dirs(ph, c->sun_dir, d2, ps);
+    /* run with probability guide, divided by it: (1/guide) * p / qb * guide qb / (qa + guide qb) */
+    double den = qa + c->guide * qb;
+    for (int i = 0; i < 3; i++)
+        L[i] += beta[i] * pa[i] / den * ps[i] * c->sun_irr[i] * T;
+}
+
 void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_counters *k)
 {
     double beta[3] = {1, 1, 1};
     L[0] = L[1] = L[2] = 0;
     int sun = c->env == PT_ENV_SCENE && (c->sun_irr[0] > 0 || c->sun_irr[1] > 0 || c->sun_irr[2] > 0);
+    int peak = sun && c->phase.gf && c->guide > 0;
+    double nee_w = 1.0; /* MIS weight of this vertex's sun NEE; 1 for the camera ray */
     k->paths++;
     for (int depth = 0;; depth++) {
         vec3 p;
@@ -425,10 +517,17 @@ void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_c
             double T = pt_transmittance(c, p, c->sun_dir, rng, k);
             if (T > 0)
                 for (int i = 0; i < 3; i++)
-                    L[i] += beta[i] * ph[i] * c->sun_irr[i] * T;
+                    L[i] += nee_w * beta[i] * ph[i] * c->sun_irr[i] * T;
         }
-        double w[3];
-        d = pt_phase_sample(&c->phase, d, rng, w);
+        /* Strategy B adds the event after this one, so it respects max_depth like the continuation does. */
+        if (peak && depth + 1 < c->max_depth && pt_rng_uniform(rng) < c->guide)
+            peak_nee(c, p, d, beta, rng, L, k);
+        double w[3], qa;
+        d = pt_phase_sample(&c->phase, d, rng, w, &qa);
+        if (peak) { /* the share strategy A keeps of the next vertex's sun NEE (balance heuristic) */
+            double qb = c->guide * pt_phase_peak_pdf(&c->phase, c->sun_dir, d);
+            nee_w = qa / (qa + qb);
+        }
         for (int i = 0; i < 3; i++)
             beta[i] *= w[i];
         o = p;

@@ -13,6 +13,8 @@
 
 /* The renderer's noise seed (NOISE_SEED in src/renderer.c, private there); test_pt_cli.sh checks they agree. */
 #define PT_NOISE_SEED 20130612u
+/* Probability per vertex of the forward-peak sun strategy (README "Variance: the forward peak"). */
+#define PT_GUIDE_DEFAULT 1.0
 
 /* ---- random numbers: xoshiro256** seeded through splitmix64, one stream per pixel ---- */
 typedef struct pt_rng {
@@ -32,6 +34,7 @@ typedef struct pt_phase {
     double *f[3];   /* f_c(theta_i) = 2 pi sin(theta_i) p_c(theta_i) / norm_c, linear in theta between nodes */
     double *cdf[3]; /* cdf[c][i] = integral of f_c from 0 to theta_i (exact for the piecewise-linear f); cdf[n-1]=1 */
     double norm[3]; /* integral of 2 pi sin p over the sphere before normalisation (1 up to the table's quadrature) */
+    double *gf, *gcdf; /* guide lobe: the green removed peak P_p normalised (NULL without a peak) */
 } pt_phase;
 int pt_phase_init(pt_phase *ph, const cu_phase_table *t, cu_error *err);
 void pt_phase_free(pt_phase *ph);
@@ -40,8 +43,12 @@ double pt_phase_eval(const pt_phase *ph, int c, double theta, double sin_theta);
 /* p_c for the angle between two unit vectors (propagation before and after scattering). */
 void pt_phase_eval_dirs(const pt_phase *ph, vec3 a, vec3 b, double out[3]);
 /* Samples an outgoing direction for propagation direction d from the mixture (1/3) sum_c p_c (one-sample MIS over
- * the channels) and returns the per-channel weights w_c = p_c / mixture (exactly 1 when mono). */
-vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3]);
+ * the channels), returns the per-channel weights w_c = p_c / mixture (exactly 1 when mono) and, if pdf is not
+ * NULL, the mixture's density in sr^-1. */
+vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3], double *pdf);
+/* The sun-guide lobe (green P_p / f centred on axis): a sample and its density in sr^-1. Needs ph->gf. */
+vec3 pt_phase_sample_peak(const pt_phase *ph, vec3 axis, pt_rng *rng);
+double pt_phase_peak_pdf(const pt_phase *ph, vec3 axis, vec3 dir);
 
 /* ---- the integrator ---- */
 typedef enum pt_medium { PT_MEDIUM_CLOUD, PT_MEDIUM_SLAB } pt_medium;
@@ -65,6 +72,7 @@ typedef struct pt_ctx {
     pt_env env;
     double env_up[3], env_down[3]; /* PT_ENV_HEMISPHERES: radiance for dir.y > 0 and dir.y <= 0 */
     int max_depth;            /* scattering events per path; a path reaching it is cut (counted, biased low) */
+    double guide;             /* probability per vertex of the extra forward-peak sun estimate (Mie + sun; 0 = off) */
     /* Camera, cloud-local. */
     vec3 cam;
     mat4 inv_rot;             /* clip -> direction, as the renderer's sky pass */

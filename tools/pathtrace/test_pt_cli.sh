@@ -67,5 +67,6 @@ t_expect "bad mode" 2 "--mode must be" -- $P $S -o "$T/x.pfm" --mode fast
 t_expect "bad grid" 2 "--grid expects" -- $P $S --dump-density "$T/d.raw" --grid 0,1,1
 t_expect "grid too big" 2 "--grid expects" -- $P $S --dump-density "$T/d.raw" --grid 4096,4096,4096
 t_expect "grid alone" 2 "--grid only applies" -- $P $S -o "$T/x.pfm" --grid 2,2,2
+t_expect "bad peak-mis" 2 "--peak-mis expects" -- $P $S -o "$T/x.pfm" --peak-mis 1.5
 t_expect "not a PFM" 2 "must end in .pfm" -- $P $S -o "$T/x.png"
 t_summary
