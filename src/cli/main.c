@@ -9,7 +9,8 @@ static void usage(FILE *f)
             "usage: cumulo <command> [options]\n"
             "  render SCENE -o OUT.png|OUT.pfm [--size WxH] [--backend egl|osmesa] [--set section.key=value]...\n"
             "  bench  SCENE [--frames N] [--warmup N] [--size WxH] [--backend B] [--set k=v]... [--csv FILE]\n"
-            "  run    SCENE --platform drm|x11|wayland|headless [--frames N] [--fullscreen] [--input SPEC]...\n");
+            "  run    SCENE --platform drm|x11|wayland|headless [--frames N] [--fullscreen] [--input SPEC]...\n"
+            "  sweep  [--scenes a,b,c] [--out DIR]   speed/accuracy sweep against the path tracer (make sweep)\n");
 }
 
 int main(int argc, char **argv)
@@ -25,6 +26,8 @@ int main(int argc, char **argv)
         return cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "run") == 0)
         return cmd_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "sweep") == 0)
+        return cmd_sweep(argc - 1, argv + 1);
     fprintf(stderr, "cumulo: unknown command '%s'\n", cmd);
     usage(stderr);
     return 2;
