@@ -2,9 +2,13 @@
 # Why each one: compiler/make/pkg-config build us; EGL/GLES + Mesa's llvmpipe give a headless GLES 3 context;
 # OSMesa is the second headless back end; libpng writes and reads PNGs; cmocka runs the unit tests;
 # GSL fits the multiple-scattering model (tools/slab); gbm/drm/libgpiod are the kiosk platform layer.
+# `make vmcheck` (tests/vm) runs the platform layer against real kernel drivers (vkms, gpio-sim, uinput) in a VM:
+# qemu-system-x86 boots it, linux-source-6.1 is the kernel it builds, with flex/bison/bc (kconfig and the build),
+# libelf-dev (objtool) and xz-utils (unpacking the source).
 DEB_PACKAGES := gcc make pkg-config libc6-dev \
                 libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
-                libpng-dev libcmocka-dev libgsl-dev libgbm-dev libdrm-dev libgpiod-dev
+                libpng-dev libcmocka-dev libgsl-dev libgbm-dev libdrm-dev libgpiod-dev \
+                qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
 PC_REQUIRED  := egl glesv2 osmesa libpng cmocka gsl
 
 deps:

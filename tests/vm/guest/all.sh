@@ -2,6 +2,7 @@
 # into /tmp/scratch/NAME.log (the host reads the cmocka-style lines there) and on the console, and its time into
 # /tmp/scratch/times.txt. Exit status: 0 when every script passed. Arguments: the scripts to run (default all).
 [ $# -gt 0 ] || set -- drm gpio evdev
+mkdir -p /tmp/scratch
 rc=0
 for t in "$@"; do
   s=$(cut -d' ' -f1 /proc/uptime)
