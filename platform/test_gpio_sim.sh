@@ -24,6 +24,7 @@ cleanup() {
   [ -n "$pid" ] && kill $pid 2>/dev/null
   echo 0 >$dev/live 2>/dev/null
   rmdir $dev/gpio-bank0/line* $dev/gpio-bank0 $dev 2>/dev/null
+  [ -n "$TMPD" ] && rm -rf "$TMPD"
 }
 trap cleanup EXIT
 mkdir $dev $dev/gpio-bank0 || { t_fail gpio_sim "cannot create $dev"; t_summary; exit 1; }
@@ -38,11 +39,11 @@ sysdir=/sys/devices/platform/$(cat $dev/dev_name)/$chip
 pull() { echo "pull-$2" >$sysdir/sim_gpio$1/pull; sleep 0.02; }
 
 # Lines by name for A and B, by offset for the button: both lookups are exercised.
-rm -f "$OUT/fifo"; mkfifo "$OUT/fifo"
+TMPD=$(mktemp -d); mkfifo "$TMPD/fifo"
 $C run scenes/cumulus.scene --platform headless --size 64x48 --accel 0 --step 1 \
-   --input "gpio:chip=$chip,a=ENC_A,b=ENC_B,button=2" --input stdin <"$OUT/fifo" >"$OUT/run.out" 2>"$OUT/run.err" &
+   --input "gpio:chip=$chip,a=ENC_A,b=ENC_B,button=2" --input stdin <"$TMPD/fifo" >"$OUT/run.out" 2>"$OUT/run.err" &
 pid=$!
-exec 9>"$OUT/fifo"
+exec 9>"$TMPD/fifo"
 i=0
 while [ $i -lt 100 ] && ! grep -q '^input: gpio' "$OUT/run.err"; do sleep 0.1; i=$((i + 1)); done
 if ! grep -q '^input: gpio' "$OUT/run.err"; then

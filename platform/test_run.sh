@@ -76,15 +76,15 @@ case "$out" in
 esac
 
 # SIGTERM: a clean stop (status 0) through the same path that restores the CRTC on DRM.
-mkfifo "$OUT/fifo" 2>/dev/null || true
-$C run $S --platform headless --size 64x48 <"$OUT/fifo" >"$OUT/t.out" 2>"$OUT/t.err" &
+TMPD=$(mktemp -d)   # private: two `make check` runs on one tree must not share a pipe or an X display
+mkfifo "$TMPD/fifo"
+$C run $S --platform headless --size 64x48 <"$TMPD/fifo" >"$OUT/t.out" 2>"$OUT/t.err" &
 pid=$!
-exec 9>"$OUT/fifo"
+exec 9>"$TMPD/fifo"
 sleep 2
 kill -TERM $pid
 wait $pid; rc=$?
 exec 9>&-
-rm -f "$OUT/fifo"
 if [ $rc -eq 0 ] && grep -q 'terminated, stopping' "$OUT/t.err" && grep -q '^\[run\]' "$OUT/t.out"; then
   t_ok sigterm_clean_exit
 else t_fail sigterm_clean_exit "exit $rc: $(cat "$OUT/t.err")"; fi
@@ -95,16 +95,18 @@ if DISPLAY= $C run $S --platform x11 --no-stdin --frames 1 2>&1 | grep -q "no di
 elif ! command -v Xvfb >/dev/null 2>&1; then
   t_skip x11_window "no Xvfb to start a virtual X server (apt-get install xvfb)"
 else
-  Xvfb :97 -screen 0 320x240x24 -nolisten tcp >"$OUT/xvfb.log" 2>&1 &
+  # -displayfd: the server picks a free display number and writes it, so parallel runs do not collide.
+  Xvfb -displayfd 5 -screen 0 320x240x24 -nolisten tcp 5>"$TMPD/display" >"$OUT/xvfb.log" 2>&1 &
   xpid=$!
-  sleep 1
-  if DISPLAY=:97 $C run $S --platform x11 --frames 3 --size 160x120 --no-stdin >"$OUT/x.out" 2>"$OUT/x.err" &&
+  i=0; while [ $i -lt 50 ] && [ ! -s "$TMPD/display" ]; do sleep 0.1; i=$((i + 1)); done
+  XD=:$(cat "$TMPD/display")
+  if DISPLAY=$XD $C run $S --platform x11 --frames 3 --size 160x120 --no-stdin >"$OUT/x.out" 2>"$OUT/x.err" &&
      grep -q 'Surface: *EGL .*160x120 window on X11' "$OUT/x.out" && grep -q 'frames=3 ' "$OUT/x.out"; then
     t_ok x11_window
   else t_fail x11_window "$(cat "$OUT/x.err" "$OUT/x.out" | tail -3)"; fi
   # A GLES-2-only device (Mesa capped at ES 2.0): one line saying so and what the device offers.
   t_expect gles2_only_device 1 "the device offers 'OpenGL ES 2.0" -- \
-    env DISPLAY=:97 MESA_GLES_VERSION_OVERRIDE=2.0 $C run $S --platform x11 --frames 1 --no-stdin
+    env DISPLAY=$XD MESA_GLES_VERSION_OVERRIDE=2.0 $C run $S --platform x11 --frames 1 --no-stdin
   kill $xpid 2>/dev/null; wait $xpid 2>/dev/null
 fi
 
@@ -128,4 +130,5 @@ else
   rm -rf "$rt"
 fi
 
+rm -rf "$TMPD"
 t_summary

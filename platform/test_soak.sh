@@ -1,5 +1,5 @@
 # platform/test_soak.sh: kiosk soak: `cumulo run` headless for N frames (default 10 000, CUMULO_SOAK_FRAMES to change)
-# at 64x48 while the sun moves from stdin every 50 ms; the resident set must not grow after warm-up (leaks in the
+# at 64x48 while the sun moves from stdin every 200 ms; the resident set must not grow after warm-up (leaks in the
 # frame loop or in the sun pass would show here long before months on a wall).
 . tests/lib.sh
 C=build/cumulo
@@ -7,20 +7,22 @@ N=${CUMULO_SOAK_FRAMES:-10000}
 LIMIT_KB=${CUMULO_SOAK_RSS_KB:-3072}
 OUT=build/test-output/soak
 mkdir -p "$OUT"
-rm -f "$OUT/fifo"
-mkfifo "$OUT/fifo" || { t_fail soak "cannot make a fifo in $OUT"; t_summary; exit 1; }
+# The command pipe lives in a private directory: two `make check` runs on one tree must not share it.
+FIFO_DIR=$(mktemp -d) || { t_fail soak "mktemp -d failed"; t_summary; exit 1; }
+FIFO=$FIFO_DIR/commands
+mkfifo "$FIFO" || { t_fail soak "cannot make a fifo in $FIFO_DIR"; t_summary; exit 1; }
 
-$C run scenes/cumulus.scene --platform headless --frames "$N" --size 64x48 <"$OUT/fifo" >"$OUT/run.out" 2>"$OUT/run.err" &
+$C run scenes/cumulus.scene --platform headless --frames "$N" --size 64x48 <"$FIFO" >"$OUT/run.out" 2>"$OUT/run.err" &
 pid=$!
-# The sun walks around the sky and up and down, one command per 50 ms, for as long as the program runs.
+# The sun walks around the sky and up and down, one command per 200 ms (each costs a sun pass), while it runs.
 (
   i=0
   while kill -0 $pid 2>/dev/null; do
     echo "sun $(( (i % 120) - 20 )) $(( (i * 7) % 360 ))"
     i=$((i + 1))
-    sleep 0.05
+    sleep 0.2
   done
-) >"$OUT/fifo" 2>/dev/null &
+) >"$FIFO" 2>/dev/null &
 gen=$!
 
 samples=""
@@ -31,7 +33,7 @@ while kill -0 $pid 2>/dev/null; do
 done
 wait $pid; rc=$?
 kill $gen 2>/dev/null; wait $gen 2>/dev/null
-rm -f "$OUT/fifo"
+rm -rf "$FIFO_DIR"
 echo "RSS samples (kB):$samples" >"$OUT/rss.txt"
 
 set -- $samples
