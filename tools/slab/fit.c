@@ -12,15 +12,16 @@ static void die(const char *m)
 
 int main(int argc, char **argv)
 {
-    const char *out = NULL;
+    const char *out = NULL, *predict = NULL;
     int models[3] = { 1, 1, 1 }, holdout = 0, nfiles = 0;
     double frac = 0.01;
     cu_cell *cells = NULL;
     int n = 0;
+    setvbuf(stdout, NULL, _IOLBF, 0);   /* reports are long runs: keep the file current line by line */
     char msg[512];
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help")) {
-            printf("usage: cumulo-slab-fit [--model bouthors|logsep|logsep2|all] [--holdout] [--frac F] [--out PREFIX] TABLE...\n"
+            printf("usage: cumulo-slab-fit [--model bouthors|logsep|logsep2|all] [--holdout] [--frac F] [--out PREFIX] [--predict FILE] TABLE...\n"
                    "Fits per (group, thickness); --holdout trains on phi_V != 90 and reports errors on phi_V = 90.\n");
             return 0;
         } else if (!strcmp(argv[i], "--model") && i + 1 < argc) {
@@ -34,6 +35,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(argv[i], "--holdout")) holdout = 1;
         else if (!strcmp(argv[i], "--frac") && i + 1 < argc) frac = atof(argv[++i]);
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+        else if (!strcmp(argv[i], "--predict") && i + 1 < argc) predict = argv[++i];
         else if (argv[i][0] == '-') die("unknown option (see --help)");
         else {
             if (cu_cells_read(argv[i], &cells, &n, msg, sizeof msg)) die(msg);
@@ -74,6 +76,13 @@ int main(int argc, char **argv)
                                             : "C = cos thL P*(Theta, d/t) H(d/t, thV) K(d/t, thL), log-linear in d between rows");
             fprintf(fo, "# name group t_m node value\n");
         }
+        FILE *fpred = NULL;
+        if (predict) {
+            char path[4096];
+            snprintf(path, sizeof path, "%s_%s.txt", predict, mname);
+            if (!(fpred = fopen(path, "w"))) die("cannot write prediction file");
+            fprintf(fpred, "# group t_m d_m thetaV phiV thetaL C C_se model_%s\n", mname);
+        }
         printf("\n## model %s\n# group  t_m  cells  median_rel  p90_rel  mc_noise_median%s  lm_iter status\n", mname,
                holdout ? "  heldout_cells heldout_median heldout_p90" : "");
         for (int g = 1; g <= 8; g++) {
@@ -93,6 +102,11 @@ int main(int argc, char **argv)
                 }
                 printf("  %4d %d\n", f.iter, f.status);
                 if (fo) cu_fit_write(fo, &f);
+                for (int i = 0; fpred && i < n; i++)
+                    if (cells[i].group == g && fabs(cells[i].t - ts[it]) <= 1e-6 * ts[it])
+                        fprintf(fpred, "%d %g %g %g %g %g %.6e %.3e %.6e\n", g, cells[i].t, cells[i].d, cells[i].thv,
+                                cells[i].phv, cells[i].thl, cells[i].C, cells[i].Cse,
+                                cu_fit_eval(&f, cells[i].d, cells[i].thv, cells[i].phv, cells[i].thl));
             }
             int cmp(const void *x, const void *y);
             qsort(all, na, sizeof(double), cmp);
@@ -105,6 +119,7 @@ int main(int argc, char **argv)
             printf("\n");
         }
         if (fo) fclose(fo);
+        if (fpred) fclose(fpred);
     }
     free(err); free(all); free(allh); free(use); free(cells);
     return 0;

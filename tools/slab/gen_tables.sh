@@ -17,7 +17,10 @@ start=$(date +%s)
 log="$WORK/gen.log"
 : >"$log"
 i=0
-[ "${FIT_ONLY:-0}" = 1 ] && THICK=""   # FIT_ONLY=1: refit existing tables in $WORK without simulating
+# STAGES: any of sim, fit, manifest (FIT_ONLY=1 is the old spelling of STAGES="fit manifest")
+STAGES=${STAGES:-"sim fit manifest"}
+[ "${FIT_ONLY:-0}" = 1 ] && STAGES="fit manifest"
+case " $STAGES " in *" sim "*) ;; *) THICK="" ;; esac
 for t in $THICK; do
   for L in $THETAL; do
     mu=$(awk -v a="$L" 'BEGIN { printf "%.12f", cos(a * 3.14159265358979324 / 180) }')
@@ -30,12 +33,18 @@ for t in $THICK; do
   done
 done
 sim=$(( $(date +%s) - start ))
-if [ "${FIT_ONLY:-0}" = 1 ]; then sim="(not re-run; see gen_sim.log)"; else cp "$log" "$WORK/gen_sim.log"; fi
+if [ -z "$THICK" ]; then sim="(not re-run; see the per-run log)"; else cp "$log" "$WORK/gen_sim.log"; fi
 t0=$(date +%s)
-# the two fits are independent: run them side by side (2 cores)
-build/cumulo-slab-fit --model all --out "$DATA/${TAG}_fit" "$WORK"/C_t*_L*.txt >"$DATA/${TAG}_fit_report.txt" &
-build/cumulo-slab-fit --model all --holdout "$WORK"/C_t*_L*.txt >"$DATA/${TAG}_fit_holdout.txt"
-wait
+# eq. 3.32 and the log-separable form; the two fits are independent, so they run side by side (2 cores).
+# (logsep2 -- P* also depending on depth -- has ~300 parameters per slice and takes ~30 s per slice: --model logsep2)
+MODELS=${MODELS:-"bouthors logsep"}
+case " $STAGES " in *" fit "*)
+  for m in $MODELS; do
+    build/cumulo-slab-fit --model "$m" --out "$DATA/${TAG}_fit" "$WORK"/C_t*_L*.txt >"$DATA/${TAG}_fit_report_$m.txt" &
+    build/cumulo-slab-fit --model "$m" --holdout "$WORK"/C_t*_L*.txt >"$DATA/${TAG}_fit_holdout_$m.txt"
+    wait
+  done ;;
+esac
 fit=$(( $(date +%s) - t0 ))
 # raw tables, compressed, so the fit can be redone without re-simulating
 tar -C "$WORK" -czf "$DATA/${TAG}_C_tables.tar.gz" $(cd "$WORK" && ls C_t*_L*.txt)
@@ -44,9 +53,9 @@ tar -C "$WORK" -czf "$DATA/${TAG}_C_tables.tar.gz" $(cd "$WORK" && ls C_t*_L*.tx
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)  git: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "command: PHOTONS=$PHOTONS THICK=\"$THICK\" THETAL=\"$THETAL\" PHASE=$PHASE DEPTHS=$DEPTHS THREADS=$THREADS SEED=$SEED TAG=$TAG sh tools/slab/gen_tables.sh"
   echo "budget: $PHOTONS photons per (thickness, thetaL) run, $i runs, ke = 0.0905 m^-1, grid thetaV = 0,20,..,80,100,..,180 deg, phiV = 0,45,90,135,180 deg, $DEPTHS depths 0..t"
-  echo "simulation wall time: ${sim}s on $THREADS threads; fit time: ${fit}s (two fits in parallel)"
+  echo "simulation wall time: ${sim}s on $THREADS threads; fit time: ${fit}s (training and hold-out fits in parallel)"
   echo "per-run times (from the simulation pass):"; sed 's/^/  /' "$WORK/gen_sim.log"
   echo "sha256:"
-  (cd "$DATA" && sha256sum "${TAG}_fit_bouthors.txt" "${TAG}_fit_logsep.txt" "${TAG}_fit_logsep2.txt" "${TAG}_fit_report.txt" "${TAG}_fit_holdout.txt" "${TAG}_C_tables.tar.gz" | sed 's/^/  /')
+  (cd "$DATA" && sha256sum $(ls ${TAG}_fit_*.txt ${TAG}_C_tables.tar.gz ${TAG}_RT_vs_thickness.txt 2>/dev/null) | sed 's/^/  /')
 } >"$DATA/${TAG}_MANIFEST.txt"
 cat "$DATA/${TAG}_MANIFEST.txt"

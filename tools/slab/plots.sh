@@ -43,3 +43,29 @@ plot for [g=1:8] "$W/up_".g.".txt" u 1:(\$2>0?\$2:1/0):3 w yerrorlines t word("1
 unset multiplot
 GP
 echo "wrote docs/slab_RT_vs_thickness.png docs/slab_groups_vs_depth.png"
+# fit vs simulation (needs: build/cumulo-slab-fit --model bouthors|logsep --predict build/slab_plots/pred TABLES(t=400))
+PB=$W/pred_bouthors.txt; PL=$W/pred_logsep.txt
+if [ -f "$PB" ] && [ -f "$PL" ]; then
+  for g in 3 8; do for v in 0 180; do
+    awk -v g=$g -v v=$v '$1==g && $4==v && $5==0 && $6>29 && $6<31 {print $3, $7, $8, $9}' "$PB" >"$W/fb_${g}_$v.txt"
+    awk -v g=$g -v v=$v '$1==g && $4==v && $5==0 && $6>29 && $6<31 {print $3, $9}' "$PL" >"$W/fl_${g}_$v.txt"
+  done; done
+  gnuplot <<GP
+set terminal pngcairo size 1100,800 font "sans,10"
+set output "docs/slab_fit_profiles.png"
+set multiplot layout 2,2 title "t = 400 m, {/Symbol q}_L = 30 deg, {/Symbol f}_V = 0: simulation (+-1 SE) vs fitted models"
+set logscale y
+set grid
+set xlabel "d (m)"; set ylabel "C (sr^{-1})"
+do for [g in "3 8"] {
+  do for [v in "0 180"] {
+    set title sprintf("group %s, {/Symbol q}_V = %s", (g eq "8" ? "16+" : g), v)
+    plot "$W/fb_".g."_".v.".txt" u 1:(\$2>0?\$2:1/0):3 w yerrorbars pt 7 t "MC", \
+         "" u 1:(\$4>0?\$4:1/0) w l lw 2 t "eq. 3.32 (Bouthors)", \
+         "$W/fl_".g."_".v.".txt" u 1:(\$2>0?\$2:1/0) w l lw 2 dt 2 t "log-separable"
+  }
+}
+unset multiplot
+GP
+  echo "wrote docs/slab_fit_profiles.png"
+fi
