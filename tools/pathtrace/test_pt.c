@@ -113,6 +113,31 @@ static void test_phase_hg(void **state)
     ctx_free(c);
 }
 
+/* Cornette-Shanks: table values against the closed form, and its mean cosine 3g(4+g^2)/(5(2+g^2)) (not g). */
+static void test_phase_cs(void **state)
+{
+    (void)state;
+    pt_ctx *c = ctx_from_text(homog_scene, (const char *[]){"cloud.phase=cornette-shanks", "cloud.g=0.8", NULL});
+    assert_true(c->phase.mono);
+    for (double th = 0.05; th < 3.1; th += 0.5) {
+        double p = pt_phase_eval(&c->phase, 0, th, sin(th)), q = cu_phase_cornette_shanks(0.8, cos(th));
+        assert_true(fabs(p / q - 1) < 2e-3);
+    }
+    pt_rng r;
+    pt_rng_seed(&r, 4, 0);
+    const int N = 400000;
+    double s = 0, s2 = 0, w[3];
+    for (int i = 0; i < N; i++) {
+        double mu = pt_phase_sample(&c->phase, v3(0, 1, 0), &r, w, NULL).y;
+        s += mu;
+        s2 += mu * mu;
+    }
+    double m = s / N, se = sqrt((s2 / N - m * m) / N), g = 0.8, expect = 3 * g * (4 + g * g) / (5 * (2 + g * g));
+    print_message("Cornette-Shanks g=0.8 sampled <cos> = %.5f +- %.5f (closed form %.5f)\n", m, se, expect);
+    assert_true(fabs(m - expect) < 3 * se + 1e-4);
+    ctx_free(c);
+}
+
 /* Mie: the full function (P~ + P_p) has the table's g, and the spectral weights have mean 1 in every channel. */
 static void test_phase_mie(void **state)
 {
@@ -506,6 +531,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rng),           cmocka_unit_test(test_phase_hg),
+        cmocka_unit_test(test_phase_cs),
         cmocka_unit_test(test_phase_mie),     cmocka_unit_test(test_camera),
         cmocka_unit_test(test_beer_lambert_delta), cmocka_unit_test(test_beer_lambert_ratio),
         cmocka_unit_test(test_furnace_white), cmocka_unit_test(test_furnace_colour),
