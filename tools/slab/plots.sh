@@ -56,7 +56,7 @@ set output "docs/slab_fit_profiles.png"
 set multiplot layout 2,2 title "t = 400 m, {/Symbol q}_L = 30 deg, {/Symbol f}_V = 0: simulation (+-1 SE) vs fitted models"
 set logscale y
 set grid
-set xlabel "d (m)"; set ylabel "C (sr^{-1})"
+set xlabel "d (m)"; set ylabel "C (sr^{-1})"; set yrange [1e-9:2]
 do for [g in "3 8"] {
   do for [v in "0 180"] {
     set title sprintf("group %s, {/Symbol q}_V = %s", (g eq "8" ? "16+" : g), v)
