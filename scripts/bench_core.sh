@@ -17,3 +17,11 @@ for s in 2 5 10 20; do b scenes/bench_e8.scene --set "quality.segments=$s"; done
 b scenes/bench_e8.scene --set ms.mode=none
 b scenes/bench_e8.scene --set quality.noise=off
 b scenes/bench_e8.scene --sun-every-frame
+# Sun transmittance and multiple scattering (issue 5): each method per frame, and the sun pass itself (redone every
+# frame with --sun-every-frame, as when a knob turns the sun) for map sizes and interval caps.
+b scenes/bench_e8.scene --set light.shadow=front
+b scenes/bench_e8.scene --set ms.mode=octaves
+b scenes/bench_e8.scene --set light.shadow=front --sun-every-frame
+for m in 128 256 512; do b scenes/bench_e8.scene --set quality.sun_map_size=$m --sun-every-frame; done
+for j in 1 2 3; do b scenes/bench_e8.scene --set light.sun_intervals=$j --sun-every-frame; done
+b scenes/bench_e8.scene --set light.sun_samples=16 --sun-every-frame

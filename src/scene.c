@@ -105,7 +105,7 @@ void cu_scene_defaults(cu_scene *s)
     s->max_intervals = 6;
     s->noise = 1;
     s->noise_octaves = 5;
-    s->sun_map_size = 256;
+    s->sun_map_size = 128;
     s->shadow = CU_SHADOW_PEEL;
     s->sun_intervals = 3;
     s->sun_samples = 32;
