@@ -35,6 +35,7 @@ include tools/slab/slab.mk
 include tools/pathtrace/pathtrace.mk
 include tests/tests.mk
 include tests/vm/vm.mk
+include mk/sweep.mk
 
 all: $(ALL_BINS)
 
