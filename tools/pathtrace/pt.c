@@ -13,7 +13,9 @@
 #define PT_SUN_SR 6.8e-5
 /* Ratio tracking plays Russian roulette below this transmittance (survive with p = T / RR_T, then T = RR_T): the
  * expectation is unchanged, and deep inside the cloud a shadow ray stops after a few steps instead of hundreds. */
+#ifndef PT_RR_T
 #define PT_RR_T 0.1
+#endif
 
 static int fail(cu_error *err, const char *fmt, const char *a)
 {
@@ -233,6 +235,21 @@ double pt_phase_peak_pdf(const pt_phase *ph, vec3 guide, vec3 dir)
     return fl / (2.0 * CU_PI * st);
 }
 
+vec3 pt_phase_sample_channel(const pt_phase *ph, vec3 d, int k, pt_rng *rng, double p[3])
+{
+    double th = sample_theta(ph->cdf[k], ph->f[k], ph->n, ph->h, pt_rng_uniform(rng));
+    vec3 o = around(d, th, 2.0 * CU_PI * pt_rng_uniform(rng));
+    double st = sin(th);
+    p[0] = pt_phase_eval(ph, 0, th, st);
+    if (ph->mono) {
+        p[1] = p[2] = p[0];
+    } else {
+        p[1] = pt_phase_eval(ph, 1, th, st);
+        p[2] = pt_phase_eval(ph, 2, th, st);
+    }
+    return o;
+}
+
 vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3], double *pdf)
 {
     int k = 0;
@@ -240,29 +257,13 @@ vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3], doubl
         k = (int)(3.0 * pt_rng_uniform(rng));
         if (k > 2) k = 2;
     }
-    double th = sample_theta(ph->cdf[k], ph->f[k], ph->n, ph->h, pt_rng_uniform(rng));
-    vec3 o = around(d, th, 2.0 * CU_PI * pt_rng_uniform(rng));
-    if (ph->mono) {
-        w[0] = w[1] = w[2] = 1.0; /* exactly: the furnace test relies on it */
-        if (pdf)
-            *pdf = pt_phase_eval(ph, 0, th, sin(th));
-        return o;
-    }
-    /* One-sample MIS over channels: the mixture pdf is (1/3) sum p_c, so the weight is bounded by 3 and has
-     * expectation 1 in each channel; the sin(theta) Jacobian cancels in the ratio. */
-    double fc[3], mix = 0;
-    for (int c = 0; c < 3; c++) {
-        fc[c] = f_at(ph, c, th);
-        mix += fc[c];
-    }
-    mix /= 3.0;
+    double p[3];
+    vec3 o = pt_phase_sample_channel(ph, d, k, rng, p);
+    double mix = (p[0] + p[1] + p[2]) / 3.0;
     for (int c = 0; c < 3; c++)
-        w[c] = mix > 0 ? fc[c] / mix : 1.0;
-    if (pdf) {
-        double st = sin(th);
-        *pdf = st > 1e-300 ? mix / (2.0 * CU_PI * st)
-                           : (pt_phase_eval(ph, 0, th, 0) + pt_phase_eval(ph, 1, th, 0) + pt_phase_eval(ph, 2, th, 0)) / 3;
-    }
+        w[c] = ph->mono ? 1.0 : mix > 0 ? p[c] / mix : 1.0;
+    if (pdf)
+        *pdf = ph->mono ? p[0] : mix;
     return o;
 }
 
@@ -462,17 +463,34 @@ static void environment(const pt_ctx *c, vec3 d, int camera_ray, double out[3])
             out[i] += c->sun_irr[i] / PT_SUN_SR;
 }
 
+/* Colour: hero-channel spectral MIS (Wilkie et al. 2014) at the level of whole paths. A path samples every direction
+ * from the phase function of one channel k (its hero, uniform among R, G, B); channel c's contribution is
+ * f_c / ((1/3) sum_j pdf_j), pdf_j being the path's density had channel j been the hero. R[j] holds prod p_j / prod
+ * p_k over the events so far (rescaled now and then: only ratios matter), so the weight of channel c is
+ * R[c] / mean(R): at most 3 for a whole path. Per-event MIS would multiply weights up to 3 per event and turn the
+ * Mie peak's channel differences (p(0) = 186, 226, 320 sr^-1) into coloured fireflies after a few forward events. */
+static void spectral_weights(const double R[3], int mono, double beta[3])
+{
+    if (mono) { /* identical channels: exactly 1, as the furnace test requires */
+        beta[0] = beta[1] = beta[2] = 1.0;
+        return;
+    }
+    double m = (R[0] + R[1] + R[2]) / 3.0;
+    for (int i = 0; i < 3; i++)
+        beta[i] = m > 0 ? R[i] / m : 0.0;
+}
+
 /* Strategy B of the sun's forward-peak MIS (README "Variance: the forward peak"): from vertex p with incoming
- * direction d and throughput beta, pick a direction in the sun's diffraction lobe, track to the next collision and
- * take the sun there, weighted by the balance heuristic against strategy A (the ordinary continuation). */
-static void peak_nee(const pt_ctx *c, vec3 p, vec3 d, const double beta[3], pt_rng *rng, double L[3], pt_counters *k)
+ * direction d, pick a direction in the sun's diffraction lobe, track to the next collision and take the sun there.
+ * The balance heuristic runs over all strategies (hero j x {continuation A, lobe B}), so the denominator is
+ * (1/3) sum_j R[j] (p_j(d.d2) + guide * G(d2)); B runs with probability guide, which its density includes. */
+static void peak_nee(const pt_ctx *c, vec3 p, vec3 d, const double R[3], pt_rng *rng, double L[3], pt_counters *k)
 {
     const pt_phase *ph = &c->phase;
     vec3 d2 = pt_phase_sample_peak(ph, c->sun_dir, rng);
-    double qb = pt_phase_peak_pdf(ph, c->sun_dir, d2);
+    double qb = c->guide * pt_phase_peak_pdf(ph, c->sun_dir, d2);
     double pa[3];
     pt_phase_eval_dirs(ph, d, d2, pa);
-    double qa = (pa[0] + pa[1] + pa[2]) / 3.0; /* strategy A's mixture pdf for d2 */
     vec3 p2;
     if (!(qb > 0) || !track(c, p, d2, rng, &p2, k))
         return;
@@ -481,19 +499,26 @@ static void peak_nee(const pt_ctx *c, vec3 p, vec3 d, const double beta[3], pt_r
         return;
     double ps[3];
     pt_phase_eval_dirs(ph, c->sun_dir, d2, ps);
-    /* run with probability guide, divided by it: (1/guide) * p / qb * guide qb / (qa + guide qb) */
-    double den = qa + c->guide * qb;
+    double den = (R[0] * (pa[0] + qb) + R[1] * (pa[1] + qb) + R[2] * (pa[2] + qb)) / 3.0;
+    if (!(den > 0))
+        return;
     for (int i = 0; i < 3; i++)
-        L[i] += beta[i] * pa[i] / den * ps[i] * c->sun_irr[i] * T;
+        L[i] += R[i] * pa[i] / den * ps[i] * c->sun_irr[i] * T;
 }
 
 void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_counters *k)
 {
-    double beta[3] = {1, 1, 1};
+    const pt_phase *ph = &c->phase;
+    double R[3] = {1, 1, 1}, beta[3] = {1, 1, 1};
     L[0] = L[1] = L[2] = 0;
     int sun = c->env == PT_ENV_SCENE && (c->sun_irr[0] > 0 || c->sun_irr[1] > 0 || c->sun_irr[2] > 0);
-    int peak = sun && c->phase.gf && c->guide > 0;
-    double nee_w = 1.0; /* MIS weight of this vertex's sun NEE; 1 for the camera ray */
+    int peak = sun && ph->gf && c->guide > 0;
+    int hero = 0;
+    if (!ph->mono) {
+        hero = (int)(3.0 * pt_rng_uniform(rng));
+        if (hero > 2) hero = 2;
+    }
+    double nee_w = 1.0; /* MIS weight of this vertex's sun NEE against strategy B; 1 for the camera ray */
     k->paths++;
     for (int depth = 0;; depth++) {
         vec3 p;
@@ -512,24 +537,35 @@ void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_c
         if (sun) {
             /* Next-event estimation: sunlight propagating along -sun_dir is scattered into -d (back toward the
              * previous vertex), so cos(theta) = (-sun_dir).(-d) = sun_dir.d (DESIGN: cos = s_L . v). */
-            double ph[3];
-            pt_phase_eval_dirs(&c->phase, c->sun_dir, d, ph);
+            double ph3[3];
+            pt_phase_eval_dirs(ph, c->sun_dir, d, ph3);
             double T = pt_transmittance(c, p, c->sun_dir, rng, k);
             if (T > 0)
                 for (int i = 0; i < 3; i++)
-                    L[i] += nee_w * beta[i] * ph[i] * c->sun_irr[i] * T;
+                    L[i] += nee_w * beta[i] * ph3[i] * c->sun_irr[i] * T;
         }
         /* Strategy B adds the event after this one, so it respects max_depth like the continuation does. */
         if (peak && depth + 1 < c->max_depth && pt_rng_uniform(rng) < c->guide)
-            peak_nee(c, p, d, beta, rng, L, k);
-        double w[3], qa;
-        d = pt_phase_sample(&c->phase, d, rng, w, &qa);
+            peak_nee(c, p, d, R, rng, L, k);
+        double pc[3];
+        d = pt_phase_sample_channel(ph, d, hero, rng, pc);
         if (peak) { /* the share strategy A keeps of the next vertex's sun NEE (balance heuristic) */
-            double qb = c->guide * pt_phase_peak_pdf(&c->phase, c->sun_dir, d);
-            nee_w = qa / (qa + qb);
+            double qb = c->guide * pt_phase_peak_pdf(ph, c->sun_dir, d);
+            double da = R[0] * pc[0] + R[1] * pc[1] + R[2] * pc[2], db = qb * (R[0] + R[1] + R[2]);
+            nee_w = da > 0 ? da / (da + db) : 0.0;
         }
-        for (int i = 0; i < 3; i++)
-            beta[i] *= w[i];
+        if (!ph->mono) {
+            double mx = 0;
+            for (int i = 0; i < 3; i++) {
+                R[i] *= pc[i];
+                mx = fmax(mx, R[i]);
+            }
+            if (!(mx > 0)) /* cannot happen: the hero's own density is positive where it sampled */
+                return;
+            for (int i = 0; i < 3; i++)
+                R[i] /= mx; /* only ratios matter; keeps them in range over any number of events */
+        }
+        spectral_weights(R, ph->mono, beta);
         o = p;
     }
 }

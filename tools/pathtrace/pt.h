@@ -42,8 +42,11 @@ void pt_phase_free(pt_phase *ph);
 double pt_phase_eval(const pt_phase *ph, int c, double theta, double sin_theta);
 /* p_c for the angle between two unit vectors (propagation before and after scattering). */
 void pt_phase_eval_dirs(const pt_phase *ph, vec3 a, vec3 b, double out[3]);
-/* Samples an outgoing direction for propagation direction d from the mixture (1/3) sum_c p_c (one-sample MIS over
- * the channels), returns the per-channel weights w_c = p_c / mixture (exactly 1 when mono) and, if pdf is not
+/* Samples an outgoing direction for propagation direction d from channel k's phase function and returns the three
+ * channels' phase values (sr^-1) at the sampled angle in p. */
+vec3 pt_phase_sample_channel(const pt_phase *ph, vec3 d, int k, pt_rng *rng, double p[3]);
+/* One event of the same scheme with a uniformly chosen channel (tests): samples from the mixture (1/3) sum_c p_c and
+ * returns the per-channel weights w_c = p_c / mixture (exactly 1 when mono) and, if pdf is not
  * NULL, the mixture's density in sr^-1. */
 vec3 pt_phase_sample(const pt_phase *ph, vec3 d, pt_rng *rng, double w[3], double *pdf);
 /* The sun-guide lobe (green P_p / f centred on axis): a sample and its density in sr^-1. Needs ph->gf. */

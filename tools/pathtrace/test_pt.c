@@ -300,6 +300,39 @@ static void test_furnace_mie(void **state)
     ctx_free(c);
 }
 
+/* Mie furnace with many events: a tau = 10 slab in a white environment (about 20 events per path), so the hero
+ * channel's path-level weights are exercised over long paths; every channel's expectation is exactly 1. */
+static void test_furnace_mie_slab(void **state)
+{
+    (void)state;
+    pt_ctx *c = ctx_from_text(homog_scene, (const char *[]){"cloud.phase=mie", NULL});
+    pt_ctx_use_slab(c, 10.0);
+    c->env = PT_ENV_HEMISPHERES;
+    for (int i = 0; i < 3; i++)
+        c->env_up[i] = c->env_down[i] = 1;
+    pt_rng r;
+    pt_rng_seed(&r, 6, 0);
+    pt_counters k = {0, 0, 0, 0};
+    const int N = 100000;
+    double s1[3] = {0}, s2[3] = {0};
+    for (int i = 0; i < N; i++) {
+        double L[3];
+        pt_radiance(c, v3(0, 1, 0), v3(0, -1, 0), &r, L, &k);
+        for (int j = 0; j < 3; j++) {
+            s1[j] += L[j];
+            s2[j] += L[j] * L[j];
+            assert_true(L[j] >= 0 && L[j] <= 3.0 + 1e-9); /* the path-level weight is bounded by 3 */
+        }
+    }
+    for (int j = 0; j < 3; j++) {
+        double m = s1[j] / N, se = sqrt((s2[j] / N - m * m) / (N - 1));
+        print_message("Mie slab furnace tau=10 channel %d: %.5f +- %.5f (%.1f events per path)\n", j, m, se,
+                      (double)k.scatters / N);
+        assert_true(fabs(m - 1) < 4 * se); /* 4 SE: three channels, and the SE itself is estimated */
+    }
+    ctx_free(c);
+}
+
 /* Plane-parallel slab (VALIDATION.md): looking straight down at a slab lit by a uniform sky of radiance 1 from above
  * gives, by reciprocity, the plane albedo R for normal incidence; light from below gives T. One path lands in
  * exactly one of the two channels, so R + T = 1 per path. */
@@ -535,7 +568,8 @@ int main(void)
         cmocka_unit_test(test_phase_mie),     cmocka_unit_test(test_camera),
         cmocka_unit_test(test_beer_lambert_delta), cmocka_unit_test(test_beer_lambert_ratio),
         cmocka_unit_test(test_furnace_white), cmocka_unit_test(test_furnace_colour),
-        cmocka_unit_test(test_furnace_mie),   cmocka_unit_test(test_slab),
+        cmocka_unit_test(test_furnace_mie),
+        cmocka_unit_test(test_furnace_mie_slab),   cmocka_unit_test(test_slab),
         cmocka_unit_test(test_slab_single),   cmocka_unit_test(test_slab_nee),
         cmocka_unit_test(test_determinism),   cmocka_unit_test(test_dump_density),
         cmocka_unit_test(test_peak_mis),
