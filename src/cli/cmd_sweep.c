@@ -1058,7 +1058,8 @@ int cmd_sweep(int argc, char **argv)
     f = fopen(path, "w");
     if (!f)
         return fprintf(stderr, "cumulo sweep: cannot write %s\n", path), 1;
-    fprintf(f, "# time_ratio rel_rmse kind label (kind 0 = one knob, 1 = greedy combination, 2 = preset)\n");
+    fprintf(f, "# time_ratio rel_rmse kind label (kind 0 = one knob, 1 = greedy combination, 2 = preset, 9 = mean "
+               "relative noise of the references, sqrt(mean sigma^2) / mean radiance)\n");
     for (int i = 1; i < nv; i++)
         fprintf(f, "%.4f %.5f 0 \"%s=%s\"\n", agg[i].time_ratio, agg[i].rel_rmse, KNOBS[vknob[i]].name + 
                 (strchr(KNOBS[vknob[i]].name, '.') - KNOBS[vknob[i]].name + 1), KNOBS[vknob[i]].vals[vval[i]]);
@@ -1066,6 +1067,10 @@ int cmd_sweep(int argc, char **argv)
         fprintf(f, "%.4f %.5f 1 \"g%d\"\n", trail[i].agg.time_ratio, trail[i].agg.rel_rmse, i + 1);
     for (int p = 0; p < 3; p++)
         fprintf(f, "%.4f %.5f 2 \"%s\"\n", presets[p]->agg.time_ratio, presets[p]->agg.rel_rmse, pnames[p]);
+    double noise = 0;
+    for (int s = 0; s < sw.nviews; s++)
+        noise += sw.v[s].pt_rel_noise / sw.nviews;
+    fprintf(f, "0 %.5f 9 \"reference noise\"\n", noise);
     fclose(f);
 
     /* sweep.md */
