@@ -306,6 +306,39 @@ static void test_determinism(void **st)
     cu_slab_result_free(&a); cu_slab_result_free(&b); cu_slab_result_free(&c); cu_slab_result_free(&d);
 }
 
+/* interior table: single-scattering C at the top towards zenith equals p(pi) mu0/(mu+mu0) (1 - e^{-tau(1/mu+1/mu0)})
+ * (here mu = mu0 = 1), and with the sun at zenith the collector mean is mirror-symmetric in phi_V:
+ * c_z(phi_V = 0) = -c_z(180), c_x(0) = 0, sigma(0) = sigma(180) */
+static void test_table_single_and_collector(void **st)
+{
+    (void)st;
+    cu_phase ph = { .kind = CU_PH_HG, .g = 0.85 };
+    cu_slab_cfg c = base_cfg(&ph, 2.0, 1.0, 200000);
+    c.metres_per_tau = 1 / 0.0905;
+    c.table = 1; c.nd = 2; c.d_tau[0] = 0; c.d_tau[1] = 1.0;
+    c.nv = 2; c.thv_deg[0] = 180; c.thv_deg[1] = 40; c.nphi = 2; c.phv_deg[0] = 0; c.phv_deg[1] = 180;
+    cu_slab_result r;
+    assert_int_equal(cu_slab_run(&c, &r), 0);
+    cu_cell_stats a, b, z;
+    cu_slab_cell_stats(&c, &r, cu_slab_cell(&c, 0, 0, 0, 0), &z);
+    double ref = cu_phase_eval(&ph, -1.0) / 2.0 * (1 - exp(-4.0));
+    printf("  C1(d=0, thetaV=180, thetaL=0) = %.6e +- %.1e, closed form %.6e (%.2f SE)\n", z.C, z.C_se, ref,
+           fabs(z.C - ref) / z.C_se);
+    assert_true(fabs(z.C - ref) < 3 * z.C_se);
+    for (int g = 0; g < 8; g += 7) {
+        cu_slab_cell_stats(&c, &r, cu_slab_cell(&c, g, 1, 1, 0), &a);
+        cu_slab_cell_stats(&c, &r, cu_slab_cell(&c, g, 1, 1, 1), &b);
+        printf("  group %s d=11 m thetaV=40: phi 0: cx=%.3f+-%.3f cz=%.3f+-%.3f sigma=%.3f+-%.3f | phi 180: cz=%.3f+-%.3f "
+               "sigma=%.3f+-%.3f (m)\n", cu_slab_group_name(g), a.cx, a.cx_se, a.cz, a.cz_se, a.sigma, a.sigma_se, b.cz,
+               b.cz_se, b.sigma, b.sigma_se);
+        assert_true(fabs(a.cx) < 3 * a.cx_se + 1e-9);
+        assert_true(fabs(a.cz + b.cz) < 3 * sqrt(a.cz_se * a.cz_se + b.cz_se * b.cz_se));
+        assert_true(fabs(a.sigma - b.sigma) < 3 * sqrt(a.sigma_se * a.sigma_se + b.sigma_se * b.sigma_se));
+        assert_true(a.cz > 0);   /* light reaching p going towards -z entered on the +z side */
+    }
+    cu_slab_result_free(&r);
+}
+
 /* the fitter: eq. 3.32 fitted with phi_V = 90 deg held out reproduces the held-out cells within the error it reports
  * on its training cells (held-out median <= training p90, held-out p90 <= 2 x training p90) */
 static void test_fit_holdout(void **st)
@@ -370,6 +403,7 @@ int main(void)
         cmocka_unit_test(test_radiance_flux),
         cmocka_unit_test(test_table_transport),
         cmocka_unit_test(test_determinism),
+        cmocka_unit_test(test_table_single_and_collector),
         cmocka_unit_test(test_fit_holdout),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
