@@ -335,6 +335,14 @@ static void test_table_single_and_collector(void **st)
         assert_true(fabs(a.cz + b.cz) < 3 * sqrt(a.cz_se * a.cz_se + b.cz_se * b.cz_se));
         assert_true(fabs(a.sigma - b.sigma) < 3 * sqrt(a.sigma_se * a.sigma_se + b.sigma_se * b.sigma_se));
         assert_true(a.cz > 0);   /* light reaching p going towards -z entered on the +z side */
+        if (g == 0) {
+            /* single scattering: entry straight above the scattering depth z, offset (d-z) tan(thetaV), weight
+             * e^{-z} e^{-(d-z)/cos(thetaV)} on [0, d] (quadrature): c_z = 4.40030 m, sigma = 1.88820 m */
+            printf("  group 1 collector vs quadrature: cz %.2f SE, sigma %.2f SE\n", fabs(a.cz - 4.40030) / a.cz_se,
+                   fabs(a.sigma - 1.88820) / a.sigma_se);
+            assert_true(fabs(a.cz - 4.40030) < 3 * a.cz_se);
+            assert_true(fabs(a.sigma - 1.88820) < 3 * a.sigma_se);
+        }
     }
     cu_slab_result_free(&r);
 }
