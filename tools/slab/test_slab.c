@@ -47,6 +47,10 @@ static void check_rt(const cu_phase *ph, double tau, double Rref, long long phot
     assert_true(fabs(R - Rref) < 3 * sR);
     assert_true(rel < 0.005);
     assert_true(fabs(T - (1 - Rref)) < 3 * sT);
+    /* T relative to 0.5 % as well where T > 0.3; for thick slabs (T = 0.10-0.19) a 0.5 % relative check would need
+     * 10-30x more photons (~1 min each): there the absolute 3-SE check above (same SE as R) is what the budget allows */
+    printf("    T relative deviation %.3f%%\n", 100 * fabs(T - (1 - Rref)) / (1 - Rref));
+    if (1 - Rref > 0.3) assert_true(fabs(T - (1 - Rref)) / (1 - Rref) < 0.005);
     assert_true(fabs(RT - 1.0) < 3 * sRT);   /* independent estimator: R + T = 1 to MC precision */
     cu_slab_result_free(&r);
 }
