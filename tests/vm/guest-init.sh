@@ -29,6 +29,6 @@ echo "guest: $1 exited with status $rc"
 echo $rc >/tmp/scratch/rc
 [ $rc -le 127 ] || rc=127
 # isa-debug-exit at port 0xf4: qemu exits at once with (byte << 1) | 1.
-printf "\\$(printf %03o $rc)" | dd of=/dev/port bs=1 seek=244 count=1 2>/dev/null
+printf "\\$(printf %03o $rc)" | dd of=/dev/port bs=1 seek=244 count=1 conv=notrunc 2>/dev/null
 echo "guest: isa-debug-exit did not stop qemu; panicking to reboot (qemu -no-reboot exits)"
 exit $rc

@@ -4,7 +4,8 @@
 # from this tree (path relative to the top of the tree) with its arguments, and exits with the guest script's
 # status. The serial console (kernel messages and the script's output) goes to stdout and to
 # build/vm/console.log.  Usage: sh tests/vm/run-vm.sh tests/vm/guest/all.sh [ARGS...]
-# Environment: VM_TIMEOUT (seconds, default 1500), VM_MEM (MiB, default 1024), VM_CPUS (default 1).
+# Environment: VM_TIMEOUT (seconds, default 1500), VM_MEM (MiB, default 1024), VM_CPUS (default 1), VM_CPU (qemu
+# -cpu model, default max).
 set -u
 repo=$(pwd)
 VM=$repo/build/vm
@@ -21,10 +22,10 @@ rm -rf "$VM/scratch"
 mkdir -p "$VM/scratch"
 # Kernel command line: the 9p root, a quiet console, panic -> reboot -> qemu exits (-no-reboot); what follows "--"
 # is handed to init as its arguments.
-append="console=ttyS0 loglevel=4 panic=1 root=hostroot rootfstype=9p rootflags=trans=virtio,version=9p2000.L,msize=262144 ro init=$repo/tests/vm/guest-init.sh -- $repo $*"
+append="console=ttyS0 loglevel=4 panic=1 root=hostroot rootfstype=9p rootflags=trans=virtio,version=9p2000.L,msize=262144 ro init=/bin/sh -- $repo/tests/vm/guest-init.sh $repo $*"
 start=$(date +%s)
 {
-  timeout "${VM_TIMEOUT:-1500}" qemu-system-x86_64 -machine pc -accel tcg -cpu max -smp "${VM_CPUS:-1}" \
+  timeout "${VM_TIMEOUT:-1500}" qemu-system-x86_64 -machine pc -accel tcg -cpu "${VM_CPU:-max}" -smp "${VM_CPUS:-1}" \
     -m "${VM_MEM:-1024}" -display none -monitor none -serial stdio -no-reboot -nodefaults \
     -kernel "$VM/bzImage" -append "$append" \
     -virtfs local,path=/,mount_tag=hostroot,readonly=on,multidevs=remap,security_model=none \

@@ -32,23 +32,25 @@ hold_check() {
   if grep -q '^restored ' $OUT/hold.out; then t_ok "$1"; else t_fail "$1" "$(cat $OUT/hold.out)"; fi
 }
 
-# kiosk RUN_NAME MODESETTING [env...]: N frames through the back end, flips counted by the kernel.
+# kiosk RUN_NAME MODESETTING [env...]: NF frames through the back end, flips counted by the kernel. Few frames: under
+# emulation each 640x480 frame of llvmpipe takes seconds.
+NF=${VM_DRM_FRAMES:-4}
 kiosk() {
   name=$1; how=$2; shift 2
   hold_start
   flips_reset
   t=$(elapsed)
-  env "$@" $C run $S --platform drm --mode $MODE --frames 12 --no-stdin >$OUT/$name.out 2>$OUT/$name.err
+  env "$@" $C run $S --platform drm --mode $MODE --frames $NF --no-stdin >$OUT/$name.out 2>$OUT/$name.err
   rc=$?
   n=$(flips)
   echo "drm: $name: exit $rc, $n flip events, $(awk -v a="$t" -v b="$(elapsed)" 'BEGIN { printf "%.1f", b - a }') s"
   cat $OUT/$name.out $OUT/$name.err
   if [ $rc -eq 0 ] && grep -q "^    Surface: .* $MODE@[0-9.]* fullscreen on $CONN via $CARD ($how modesetting)" \
-       $OUT/$name.out && grep -q '^\[run\] .*frames=12 ' $OUT/$name.out; then t_ok ${name}_renders_12_frames
-  else t_fail ${name}_renders_12_frames "exit $rc: $(tail -2 $OUT/$name.err)"; fi
-  # The first frame sets the mode (a blocking commit, no event); each of the other 11 is a flip with an event.
-  if [ "$n" -eq 11 ]; then t_ok ${name}_11_page_flips_counted_by_kernel
-  else t_fail ${name}_11_page_flips_counted_by_kernel "kernel delivered $n flip events, expected 11"; fi
+       $OUT/$name.out && grep -q "^\[run\] .*frames=$NF " $OUT/$name.out; then t_ok ${name}_renders_${NF}_frames
+  else t_fail ${name}_renders_${NF}_frames "exit $rc: $(tail -2 $OUT/$name.err)"; fi
+  # The first frame sets the mode (a blocking commit, no event); each of the others is a flip with an event.
+  if [ "$n" -eq $((NF - 1)) ]; then t_ok ${name}_$((NF - 1))_page_flips_counted_by_kernel
+  else t_fail ${name}_$((NF - 1))_page_flips_counted_by_kernel "kernel delivered $n flip events, expected $((NF - 1))"; fi
   hold_check ${name}_crtc_restored
 }
 kiosk drm_atomic atomic
@@ -61,7 +63,7 @@ rm -f $OUT/term.fifo; mkfifo $OUT/term.fifo
 $C run $S --platform drm --mode $MODE <$OUT/term.fifo >$OUT/term.out 2>$OUT/term.err &
 pid=$!
 exec 6>$OUT/term.fifo
-i=0; while [ $i -lt 1200 ] && [ "$(flips)" -lt 3 ] && kill -0 $pid 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
+i=0; while [ $i -lt 1200 ] && [ "$(flips)" -lt 2 ] && kill -0 $pid 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
 $H/vm_kms snap $OUT/screen.ppm $CARD
 snap=$?
 kill -TERM $pid
@@ -69,7 +71,7 @@ wait $pid; rc=$?
 exec 6>&-
 cat $OUT/term.err
 n=$(flips)
-if [ $rc -eq 0 ] && grep -q 'terminated, stopping' $OUT/term.err && grep -q '^\[run\] ' $OUT/term.out && [ "$n" -ge 3 ]
+if [ $rc -eq 0 ] && grep -q 'terminated, stopping' $OUT/term.err && grep -q '^\[run\] ' $OUT/term.out && [ "$n" -ge 2 ]
 then t_ok drm_sigterm_mid_run_clean_exit
 else t_fail drm_sigterm_mid_run_clean_exit "exit $rc after $n flips: $(tail -2 $OUT/term.err)"; fi
 hold_check drm_sigterm_crtc_restored
