@@ -269,11 +269,11 @@ static int build_programs(cu_renderer *r, cu_error *err)
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
              "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
-             "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n",
+             "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
              s->profile == CU_PROFILE_KOL, (int)s->ms_mode, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, r->shadow == CU_SHADOW_PEEL, s->sun_intervals,
-             s->sun_filter, s->sun_samples);
+             s->sun_filter, s->sun_samples, s->integration);
     char fs_defs[1100], hull_defs[1100], lin[1100], back_defs[1100];
     snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n#define SUN_BACK 0\n", defs);
     snprintf(back_defs, sizeof back_defs, "%s#define FULLSCREEN 0\n#define SUN_BACK 1\n", defs);
@@ -603,6 +603,9 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase_n"), CU_PHASE_N);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_irr"), (float)r->sky.sun_irradiance[0],
                   (float)r->sky.sun_irradiance[1], (float)r->sky.sun_irradiance[2]);
+    double amb = s->sky_light ? 1.0 : 0.0;
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_ambient"), (float)(amb * r->sky.ambient[0]),
+                  (float)(amb * r->sky.ambient[1]), (float)(amb * r->sky.ambient[2]));
     gl->Uniform3f(gl->GetUniformLocation(p, "u_ms_abc"), (float)s->ms_a, (float)s->ms_b, (float)s->ms_c);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
     gl->Uniform1f(gl->GetUniformLocation(p, "u_one_minus_g"), (float)(1.0 - r->phase_g_eff));

@@ -33,6 +33,7 @@ static const char *const sky_names[] = {"preetham", "constant", NULL};
 static const char *const shadow_names[] = {"peel", "front", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
+static const char *const integration_names[] = {"exponential", "kol", NULL};
 
 #define S(f) offsetof(cu_scene, f)
 #define E(f) offsetof(cu_ellipsoid, f)
@@ -65,6 +66,7 @@ static const key_def keys[] = {
     {"quality", "noise", K_ENUM, 1, S(noise), 0, 0, 0, bool_names, ""},
     {"quality", "noise_octaves", K_INT, 1, S(noise_octaves), 1, 5, 0, NULL, ""},
     {"quality", "sun_map_size", K_INT, 1, S(sun_map_size), 16, 4096, 0, NULL, "texels"},
+    {"quality", "integration", K_ENUM, 1, S(integration), 0, 0, 0, integration_names, ""},
     {"light", "shadow", K_ENUM, 1, S(shadow), 0, 0, 0, shadow_names, ""},
     {"light", "sun_intervals", K_INT, 1, S(sun_intervals), 1, 4, 0, NULL, ""},
     {"light", "sun_samples", K_INT, 1, S(sun_samples), 4, 64, 0, NULL, ""},
@@ -74,6 +76,7 @@ static const key_def keys[] = {
     {"ms", "a", K_DOUBLE, 1, S(ms_a), 0, 1, 0, NULL, ""},
     {"ms", "b", K_DOUBLE, 1, S(ms_b), 0, 1, 0, NULL, ""},
     {"ms", "c", K_DOUBLE, 1, S(ms_c), 0, 1, 0, NULL, ""},
+    {"ms", "sky_light", K_ENUM, 1, S(sky_light), 0, 0, 0, bool_names, ""},
 };
 #undef S
 #undef E
@@ -115,6 +118,7 @@ void cu_scene_defaults(cu_scene *s)
     s->ms_a = 0.5;
     s->ms_b = 0.5;
     s->ms_c = 0.5;
+    s->sky_light = 1;
 }
 
 double cu_scene_core_extinction(const cu_scene *s)

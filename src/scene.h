@@ -53,6 +53,7 @@ struct cu_scene {
     int noise;                /* 0/1 */
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
     int sun_map_size;         /* texels per side */
+    int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
     /* [light] */
     cu_shadow_method shadow;
     int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */
@@ -62,6 +63,7 @@ struct cu_scene {
     cu_ms_mode ms_mode;
     int ms_octaves;
     double ms_a, ms_b, ms_c;  /* Wrenninge: extinction, scattering and anisotropy factors per octave */
+    int sky_light;            /* the isotropic sky-and-ground light term, 0/1 */
 };
 
 void cu_scene_defaults(cu_scene *s);

@@ -92,7 +92,7 @@ void cu_sky_compute(cu_sky *sky, const cu_scene *s)
         }
     }
     /* Sky irradiance on the ground: integrate the sky's radiance over the upper hemisphere (cosine-weighted). */
-    double E[3] = {0, 0, 0};
+    double E[3] = {0, 0, 0}, M[3] = {0, 0, 0};
     const int NT = 24, NP = 48;
     for (int i = 0; i < NT; i++) {
         double th = (i + 0.5) * (CU_PI / 2) / NT;
@@ -101,15 +101,19 @@ void cu_sky_compute(cu_sky *sky, const cu_scene *s)
             vec3 d = v3(sin(th) * cos(ph), cos(th), sin(th) * sin(ph));
             double L[3];
             cu_sky_radiance(sky, s, d, L);
-            double w = cos(th) * sin(th) * (CU_PI / 2 / NT) * (2 * CU_PI / NP);
-            for (int c = 0; c < 3; c++)
-                E[c] += L[c] * w;
+            double dw = sin(th) * (CU_PI / 2 / NT) * (2 * CU_PI / NP);
+            for (int c = 0; c < 3; c++) {
+                E[c] += L[c] * cos(th) * dw;
+                M[c] += L[c] * dw;
+            }
         }
     }
     double mu_s = sky->sun_dir.y > 0 ? sky->sun_dir.y : 0;
     for (int c = 0; c < 3; c++) {
         sky->sky_irradiance[c] = E[c];
         sky->ground[c] = s->ground_albedo / CU_PI * (sky->sun_irradiance[c] * mu_s + E[c]);
+        /* half the sphere is sky (M / 2 pi is its mean radiance), half is ground; a constant sky is everywhere */
+        sky->ambient[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : 0.5 * (M[c] / (2 * CU_PI) + sky->ground[c]);
     }
 }
 

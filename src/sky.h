@@ -13,6 +13,7 @@ typedef struct cu_sky {
     double norm[3];             /* F(0, theta_s) for Y, x, y */
     double ground[3];           /* radiance of the Lambertian ground */
     double sky_irradiance[3];   /* sky irradiance on a horizontal plane */
+    double ambient[3];          /* mean radiance of the environment (sky and ground) over the whole sphere */
 } cu_sky;
 
 void cu_sky_compute(cu_sky *sky, const cu_scene *s);

@@ -17,12 +17,14 @@
 static const cu_display_backend *const backends[] = {&cu_display_egl, &cu_display_osmesa};
 static const char *const backend_names[] = {"egl", "osmesa"};
 
-/* A homogeneous cloud (no noise, h = 0) in front of a constant white sky with no sun: each pixel is then exactly
- * the transmittance T = exp(-k_e L) along its chord L. */
+/* A homogeneous cloud (no noise, h = 0) in front of a constant white sky with no sun and the sky-light term off:
+ * each pixel is then exactly the transmittance T = exp(-k_e L) along its chord L. (With sky light on, a uniform sky
+ * makes the cloud vanish: test_furnace.) */
 #define BEER_SCENE                                                                                        \
     "[output]\nsize = 160 120\n[camera]\nposition = 40 230 -900\nlook_at = 10 260 0\nfov = 40\n"      \
     "[sun]\nelevation = 30\nirradiance = 0 0 0\n[sky]\nmodel = constant\ncolor = 1 1 1\n"              \
-    "[cloud]\ndensity = 20\nboundary = 0\nphase = hg\ng = 0.85\n[quality]\nnoise = off\nsegments = 3\n"                     \
+    "[cloud]\ndensity = 20\nboundary = 0\nphase = hg\ng = 0.85\n[quality]\nnoise = off\nsegments = 3\n"    \
+    "[ms]\nsky_light = off\n"                     \
     "[ellipsoid]\ncenter = 0 250 0\nradii = 200 120 160\n"
 
 /* Direction through the centre of pixel (x, y) (y = 0 at the top), as the renderer's camera defines it. */
@@ -182,6 +184,66 @@ static void test_empty_scene_is_sky(void **st)
     }
 }
 
+static void test_furnace(void **st)
+{
+    (void)st;
+    /* Non-absorbing droplets in a uniform environment and no sun: whatever the cloud, every pixel must come out as
+     * the environment (what is scattered in replaces what is scattered out). */
+    static const char *const furnace[] = {"sky.model=constant", "sky.color=0.3 0.5 0.9", "sun.irradiance=0 0 0", NULL};
+    const float sky[3] = {0.3f, 0.5f, 0.9f};
+    for (int b = 0; b < 2; b++) {
+        tr_ctx c;
+        if (tr_open(&c, backends[b], 96, 72, 1))
+            fail_msg("%s", c.err);
+        float *px = malloc(sizeof(float) * 96 * 72 * 3);
+        double worst = 0;
+        for (size_t sc = 0; sc < 2; sc++) {
+            if (tr_render(&c, sc ? "scenes/inside.scene" : "scenes/cumulus.scene", furnace))
+                fail_msg("%s", c.err);
+            tr_read_rgbf(&c, px);
+            for (long i = 0; i < 96 * 72 * 3; i++)
+                worst = fmax(worst, fabs(px[i] - sky[i % 3]) / sky[i % 3]);
+        }
+        printf("%s furnace: max relative deviation %.2e\n", backend_names[b], worst);
+        assert_true(worst < 1e-4);
+        free(px);
+        tr_close(&c);
+    }
+}
+
+static void test_segment_integration(void **st)
+{
+    (void)st;
+    /* Few segments against many: the energy-conserving segments (default) must be closer to the converged image than
+     * Kol's trapezoids of k_e S e^-tau (eq. 3.20), which overestimate optically thick segments. */
+    static const char *const ref[] = {"quality.segments=48", NULL};
+    static const char *const exp3[] = {"quality.segments=3", NULL};
+    static const char *const kol3[] = {"quality.segments=3", "quality.integration=kol", NULL};
+    const char *const *sets[3] = {ref, exp3, kol3};
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, 128, 96, 1))
+        fail_msg("%s", c.err);
+    long n = 128 * 96 * 3;
+    float *img[3];
+    for (int k = 0; k < 3; k++) {
+        img[k] = malloc(sizeof(float) * (size_t)n);
+        if (tr_render(&c, "scenes/cumulus.scene", sets[k]))
+            fail_msg("%s", c.err);
+        tr_read_rgbf(&c, img[k]);
+    }
+    double e[2] = {0, 0};
+    for (int k = 1; k < 3; k++) {
+        for (long i = 0; i < n; i++)
+            e[k - 1] += ((double)img[k][i] - img[0][i]) * ((double)img[k][i] - img[0][i]);
+        e[k - 1] = sqrt(e[k - 1] / n);
+    }
+    printf("3 segments vs 48: RMSE %.4f energy-conserving, %.4f Kol trapezoids\n", e[0], e[1]);
+    assert_true(e[0] < e[1]);
+    for (int k = 0; k < 3; k++)
+        free(img[k]);
+    tr_close(&c);
+}
+
 static const char *const test_scenes[] = {"scenes/cumulus.scene", "scenes/silver_lining.scene", "scenes/inside.scene",
                                           "scenes/low_sun.scene"};
 
@@ -190,6 +252,7 @@ static void test_no_nan_in_any_scene(void **st)
     (void)st;
     static const char *const variants[][3] = {
         {NULL}, {"ms.mode=octaves", NULL}, {"ms.mode=none", NULL}, {"cloud.profile=kol", NULL},
+        {"quality.integration=kol", "light.shadow=front", NULL},
         {"cloud.phase=hg", "cloud.g=0.99", NULL}, {"cloud.boundary=0", NULL}, {"quality.segment_ratio=1", NULL}};
     for (int b = 0; b < 2; b++) {
         tr_ctx c;
@@ -391,7 +454,8 @@ int main(void)
         cmocka_unit_test(test_beer_lambert_chords),   cmocka_unit_test(test_overlap_integrated_once),
         cmocka_unit_test(test_empty_scene_is_sky),    cmocka_unit_test(test_no_nan_in_any_scene),
         cmocka_unit_test(test_camera_into_cloud_is_continuous), cmocka_unit_test(test_reference_images),
-        cmocka_unit_test(test_glory_and_fogbow),
+        cmocka_unit_test(test_glory_and_fogbow),      cmocka_unit_test(test_furnace),
+        cmocka_unit_test(test_segment_integration),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
