@@ -15,15 +15,21 @@ if [ -c $CARD ] && $H/vm_kms info $CARD >$OUT/kms-info.txt 2>&1 && grep -q "^dri
 else t_fail drm_vkms_present "$(ls -l /dev/dri 2>&1; cat $OUT/kms-info.txt)"; t_summary; exit 1; fi
 cat $OUT/kms-info.txt
 
-flips_reset() { echo 1 >$TR/events/drm/drm_vblank_event_delivered/enable; echo >$TR/trace; }
+# Only events sent to a client count: the atomic helpers also complete their internal commits (mode sets, the
+# restore) with an event of their own that has no file, filtered out in the kernel.
+flips_reset() {
+  echo 'file != 0' >$TR/events/drm/drm_vblank_event_delivered/filter
+  echo 1 >$TR/events/drm/drm_vblank_event_delivered/enable
+  echo >$TR/trace
+}
 flips() { grep -c 'drm_vblank_event_delivered:' $TR/trace; }
 
 # hold_start: a pattern on the screen, master dropped; hold_check NAME: did the run put it back?
 hold_start() {
-  rm -f $OUT/hold.fifo; mkfifo $OUT/hold.fifo
-  $H/vm_kms hold $CARD <$OUT/hold.fifo >$OUT/hold.out 2>&1 &
+  rm -f $F/hold.fifo; mkfifo $F/hold.fifo
+  $H/vm_kms hold $CARD <$F/hold.fifo >$OUT/hold.out 2>&1 &
   holdpid=$!
-  exec 7>$OUT/hold.fifo
+  exec 7>$F/hold.fifo
   wait_for $OUT/hold.out '^holding ' 30 || echo "drm: vm_kms hold did not start: $(cat $OUT/hold.out)"
 }
 hold_check() {
@@ -43,6 +49,7 @@ kiosk() {
   env "$@" $C run $S --platform drm --mode $MODE --frames $NF --no-stdin >$OUT/$name.out 2>$OUT/$name.err
   rc=$?
   n=$(flips)
+  cp $TR/trace $OUT/$name.trace
   echo "drm: $name: exit $rc, $n flip events, $(awk -v a="$t" -v b="$(elapsed)" 'BEGIN { printf "%.1f", b - a }') s"
   cat $OUT/$name.out $OUT/$name.err
   if [ $rc -eq 0 ] && grep -q "^    Surface: .* $MODE@[0-9.]* fullscreen on $CONN via $CARD ($how modesetting)" \
@@ -59,10 +66,10 @@ kiosk drm_legacy legacy CUMULO_DRM_LEGACY=1
 # SIGTERM mid-run, with a look at the screen first: the scanned-out buffer against the headless render.
 hold_start
 flips_reset
-rm -f $OUT/term.fifo; mkfifo $OUT/term.fifo
-$C run $S --platform drm --mode $MODE <$OUT/term.fifo >$OUT/term.out 2>$OUT/term.err &
+rm -f $F/term.fifo; mkfifo $F/term.fifo
+$C run $S --platform drm --mode $MODE <$F/term.fifo >$OUT/term.out 2>$OUT/term.err &
 pid=$!
-exec 6>$OUT/term.fifo
+exec 6>$F/term.fifo
 i=0; while [ $i -lt 1200 ] && [ "$(flips)" -lt 2 ] && kill -0 $pid 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
 $H/vm_kms snap $OUT/screen.ppm $CARD
 snap=$?

@@ -8,10 +8,10 @@ if [ ! -c /dev/uinput ]; then t_fail uinput_present "no /dev/uinput"; t_summary;
 KNOB=cumulo-vm-knob
 KEYS=cumulo-vm-keys
 
-rm -f $OUT/ui.fifo $OUT/ev.fifo; mkfifo $OUT/ui.fifo $OUT/ev.fifo
-$H/vm_uinput <$OUT/ui.fifo >$OUT/ui.out 2>&1 &
+rm -f $F/ui.fifo $F/ev.fifo; mkfifo $F/ui.fifo $F/ev.fifo
+$H/vm_uinput <$F/ui.fifo >$OUT/ui.out 2>&1 &
 uipid=$!
-exec 8>$OUT/ui.fifo
+exec 8>$F/ui.fifo
 echo "knob $KNOB" >&8
 echo "keys $KEYS" >&8
 if wait_for $OUT/ui.out "^created $KEYS /dev/input/event" 30; then t_ok uinput_devices_created
@@ -20,9 +20,9 @@ cat $OUT/ui.out
 knob_path=$(sed -n "s/^created $KNOB //p" $OUT/ui.out)
 
 $C run $S --platform headless --size 64x48 --accel 0 --step 1 --input "evdev:name=$KNOB" --input "evdev:name=$KEYS" \
-   --input stdin <$OUT/ev.fifo >$OUT/ev.out 2>$OUT/ev.err &
+   --input stdin <$F/ev.fifo >$OUT/ev.out 2>$OUT/ev.err &
 pid=$!
-exec 9>$OUT/ev.fifo
+exec 9>$F/ev.fifo
 if wait_for $OUT/ev.out '^    Sun: ' 120 && grep -q "^input: evdev name='$KNOB' ('$KNOB')" $OUT/ev.err &&
    grep -q "^input: evdev name='$KEYS' ('$KEYS')" $OUT/ev.err; then t_ok evdev_open_by_name
 else t_fail evdev_open_by_name "$(cat $OUT/ev.err)"; kill $pid; t_summary; exit 1; fi

@@ -4,16 +4,21 @@ C=build/cumulo
 S=scenes/cumulus.scene
 H=build/vm
 OUT=/tmp/scratch/out
-mkdir -p "$OUT"
+# FIFOs cannot live on the 9p share: they go to the guest's tmpfs.
+F=/tmp/fifo
+mkdir -p "$OUT" $F
 # The same software-GL environment as `make check`.
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=1 MESA_DEBUG=silent EGL_LOG_LEVEL=fatal
 
+# now: seconds since boot (whole). Deadlines use it, not loop counts: under emulation a grep over 9p is slow.
+now() { cut -d. -f1 /proc/uptime; }
+
 # wait_for FILE REGEX [SECONDS]: 0 once a line of FILE matches (grep -E), 1 after SECONDS (default 60).
 wait_for() {
-  _n=$(( ${3:-60} * 10 )); _i=0
-  while [ $_i -lt $_n ]; do
+  _end=$(( $(now) + ${3:-60} ))
+  while [ "$(now)" -le $_end ]; do
     grep -Eq -- "$2" "$1" 2>/dev/null && return 0
-    sleep 0.1; _i=$((_i + 1))
+    sleep 0.2
   done
   return 1
 }
@@ -22,11 +27,11 @@ wait_for() {
 last_sun() { grep "^sun .* source=$2\$" "$1" | tail -1; }
 
 # wait_sun FILE SOURCE EXPECTED_LINE [SECONDS]: waits until the last sun line of SOURCE is EXPECTED_LINE and stays so
-# for half a second more (a late extra detent would show), then compares. 0 if equal.
+# for a second more (a late extra detent would show), then compares. 0 if equal.
 wait_sun() {
-  _n=$(( ${4:-30} * 10 )); _i=0
-  while [ $_i -lt $_n ] && [ "$(last_sun "$1" "$2")" != "$3" ]; do sleep 0.1; _i=$((_i + 1)); done
-  sleep 0.5
+  _end=$(( $(now) + ${4:-30} ))
+  while [ "$(now)" -le $_end ] && [ "$(last_sun "$1" "$2")" != "$3" ]; do sleep 0.2; done
+  sleep 1
   [ "$(last_sun "$1" "$2")" = "$3" ]
 }
 
