@@ -98,9 +98,12 @@ static void config_diff(const config *c, char *out, size_t len, const char *sep)
     out[0] = 0;
     size_t n = 0;
     for (int k = 0; k < NKNOBS; k++)
-        if (c->v[k] != KNOBS[k].high)
-            n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%s=%s", n ? sep : "", KNOBS[k].name,
-                                  KNOBS[k].vals[c->v[k]]);
+        if (c->v[k] != KNOBS[k].high) {
+            const char *name = KNOBS[k].name, *val = KNOBS[k].vals[c->v[k]];
+            if (strcmp(name, "quality.noise_octaves") == 0 && strcmp(val, "off") == 0)
+                name = "quality.noise"; /* the key it sets */
+            n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%s=%s", n ? sep : "", name, val);
+        }
     if (n == 0)
         snprintf(out, len, "high");
 }
@@ -109,6 +112,7 @@ static void config_diff(const config *c, char *out, size_t len, const char *sep)
 
 typedef struct result {
     double time_ms, time_ratio;
+    double tmin_ms, tmin_ratio; /* fastest frame: on a loaded machine the least disturbed estimate */
     double rmse, psnr, peak, maxabs, visible, mean_ref, rel_rmse;
     double rel_bias;       /* sqrt(max(0, MSE - mean sigma^2 of the reference)) / mean reference: PT noise removed */
     int ok;
@@ -122,6 +126,7 @@ typedef struct view {
     double pt_rel_noise;   /* pt_noise / mean reference radiance */
     double pt_var;         /* mean sigma^2 */
     double exposure, white[3];
+    double clip[3];        /* radiance the display curve saturates at (exposure * L / white = 16): the sun disk */
     int noise_on;
 } view;
 
@@ -227,8 +232,8 @@ static int load_reference(sweep *sw, view *v)
     char *bin;
     size_t blen;
     if (stat(sw->pt, &st) || read_file(sw->pt, &bin, &blen))
-        return free(text), fprintf(stderr, "cumulo sweep: reference path tracer %s not found (make %s)\n", sw->pt, sw->pt),
-               1;
+        return free(text),
+               fprintf(stderr, "cumulo sweep: reference path tracer %s not found (make %s)\n", sw->pt, sw->pt), 1;
     /* The path tracer's image depends on the scene file, the density knobs (noise octaves; noise on/off stays the
      * view's) and the phase model; the other knobs are the real-time renderer's alone. The reference has the high
      * values of those. */
@@ -301,9 +306,12 @@ static int load_reference(sweep *sw, view *v)
     size_t n = (size_t)sw->ew * sw->eh * 3;
     double s2 = 0, s1 = 0, m = 0;
     for (size_t i = 0; i < n; i++) {
-        s2 += (double)sig.pxf[i] * sig.pxf[i];
-        s1 += sig.pxf[i];
-        m += v->ref.pxf[i];
+        double cl = v->clip[i % 3];
+        if (v->ref.pxf[i] < cl) { /* clipped pixels (the sun) carry no error and no noise in the metrics */
+            s2 += (double)sig.pxf[i] * sig.pxf[i];
+            s1 += sig.pxf[i];
+        }
+        m += v->ref.pxf[i] < cl ? v->ref.pxf[i] : cl;
     }
     cu_image_free(&sig);
     v->pt_var = s2 / n;
@@ -343,13 +351,17 @@ static void compare(const sweep *sw, const view *v, const float *img, result *r)
     long vis = 0;
     float *sorted = malloc(sizeof(float) * n);
     for (size_t i = 0; i < n; i++) {
-        double d = (double)img[i] - ref[i];
+        double cl = v->clip[i % 3];
+        double a = img[i] < cl ? img[i] : cl, b = ref[i] < cl ? ref[i] : cl;
+        if (img[i] != img[i])
+            a = img[i];
+        double d = a - b;
         se += d * d;
         if (fabs(d) > mx || d != d)
             mx = fabs(d);
-        mean += ref[i];
+        mean += b;
         if (sorted)
-            sorted[i] = ref[i];
+            sorted[i] = (float)b;
     }
     for (size_t p = 0; p < npx; p++)
         for (int c = 0; c < 3; c++)
@@ -490,43 +502,67 @@ static int measure_view(sweep *sw, view *v, const config *cfg, int n, result *re
     int rc = 0;
     size_t npx = (size_t)sw->ew * sw->eh;
     float *img = malloc(sizeof(float) * 3 * npx), *up = malloc(sizeof(float) * 3 * npx);
-    double *t = malloc(sizeof(double) * (size_t)n * (size_t)sw->frames);
-    cu_renderer **rr = calloc((size_t)n, sizeof *rr);
-    int *tw = calloc((size_t)n, sizeof(int)), *th = calloc((size_t)n, sizeof(int));
-    if (!img || !up || !t || !rr || !tw || !th)
+    /* Time slots: every configuration once, high (cfg[0]) three times spread through the round (its frames pooled),
+     * since every ratio divides by it. */
+    int extra = n > 2 ? 2 : 0, nsl = n + extra;
+    int *slot = calloc((size_t)nsl, sizeof(int));
+    double *t = malloc(sizeof(double) * (size_t)nsl * (size_t)sw->frames);
+    double *pool = malloc(sizeof(double) * (size_t)(extra + 1) * (size_t)sw->frames);
+    cu_renderer **rr = calloc((size_t)nsl, sizeof *rr);
+    int *tw = calloc((size_t)nsl, sizeof(int)), *th = calloc((size_t)nsl, sizeof(int));
+    if (!img || !up || !t || !rr || !tw || !th || !slot || !pool)
         rc = 1;
-    for (int i = 0; i < n && rc == 0; i++) {
+    for (int k = 0, i = 0; k < nsl && slot; k++) /* high at 0, ~1/3 and ~2/3 */
+        slot[k] = (extra && (k == nsl / 3 || k == 2 * nsl / 3)) ? 0 : i++;
+    for (int k = 0; k < nsl && rc == 0; k++) {
         double scale;
+        int i = slot[k];
         cu_scene *sc = make_scene(v->path, &cfg[i], &scale);
-        if (!sc || make_renderer(&ts, sc, &rr[i]))
+        if (!sc || make_renderer(&ts, sc, &rr[k]))
             rc = 1;
         cu_scene_free(sc);
-        tw[i] = (int)lround(sw->tw * scale);
-        th[i] = (int)lround(sw->th * scale);
+        tw[k] = (int)lround(sw->tw * scale);
+        th[k] = (int)lround(sw->th * scale);
         for (int f = 0; f < (sw->warmup > 0 ? sw->warmup : 1) && rc == 0; f++)
-            rc = render_with(&ts, rr[i], tw[i], th[i]);
+            rc = render_with(&ts, rr[k], tw[k], th[k]);
     }
     for (int f = 0; f < sw->frames && rc == 0; f++)
-        for (int k = 0; k < n && rc == 0; k++) {
-            int i = (k + f) % n;
+        for (int j = 0; j < nsl && rc == 0; j++) {
+            int k = (j + f) % nsl;
             if (sw->sun_moving) {
                 double el, az;
                 cu_error e;
-                cu_renderer_get_sun(rr[i], &el, &az);
-                cu_renderer_set_sun(rr[i], el, az + (f % 2 ? 0.01 : -0.01), &e);
+                cu_renderer_get_sun(rr[k], &el, &az);
+                cu_renderer_set_sun(rr[k], el, az + (f % 2 ? 0.01 : -0.01), &e);
             }
             double a = now_ms();
-            rc = render_with(&ts, rr[i], tw[i], th[i]);
-            t[(size_t)i * sw->frames + f] = now_ms() - a;
+            rc = render_with(&ts, rr[k], tw[k], th[k]);
+            t[(size_t)k * sw->frames + f] = now_ms() - a;
         }
-    for (int i = 0; i < n; i++) {
-        if (rc == 0)
-            res[i].time_ms = median(t + (size_t)i * sw->frames, sw->frames);
-        cu_renderer_destroy(rr[i]);
-        rr[i] = NULL;
+    for (int k = 0; k < nsl && rc == 0; k++) {
+        int i = slot[k];
+        if (i == 0)
+            continue;
+        res[i].time_ms = median(t + (size_t)k * sw->frames, sw->frames);
+        res[i].tmin_ms = t[(size_t)k * sw->frames]; /* sorted by median() */
     }
-    for (int i = 0; i < n && rc == 0; i++)
+    if (rc == 0) {
+        int np = 0;
+        for (int k = 0; k < nsl; k++)
+            if (slot[k] == 0)
+                for (int f = 0; f < sw->frames; f++)
+                    pool[np++] = t[(size_t)k * sw->frames + f];
+        res[0].time_ms = median(pool, np);
+        res[0].tmin_ms = pool[0];
+    }
+    for (int k = 0; k < nsl && rr; k++)
+        cu_renderer_destroy(rr[k]);
+    free(slot);
+    free(pool);
+    for (int i = 0; i < n && rc == 0; i++) {
         res[i].time_ratio = res[i].time_ms / res[0].time_ms;
+        res[i].tmin_ratio = res[i].tmin_ms / res[0].tmin_ms;
+    }
     cli_session_close(&ts);
     o.width = sw->ew;
     o.height = sw->eh;
@@ -589,8 +625,10 @@ static void csv_row(sweep *sw, const char *kind, const char *scene, const char *
 {
     char d[512];
     config_diff(c, d, sizeof d, ";");
-    fprintf(sw->csv, "%s,%s,%s,%s,\"%s\",%.3f,%.4f,%.6g,%.3f,%.6g,%.6g,%.3f,%.6g,%.5f,%.5f,%.5f\n", kind, scene, knob,
-            value, d, r->time_ms, r->time_ratio, r->rmse, r->psnr, r->peak, r->maxabs, r->visible, r->mean_ref,
+    fprintf(sw->csv, "%s,%s,%s,%s,\"%s\",%.3f,%.4f,%.3f,%.4f,%.6g,%.3f,%.6g,%.6g,%.3f,%.6g,%.5f,%.5f,%.5f\n", kind,
+            scene, knob,
+            value, d, r->time_ms, r->time_ratio, r->tmin_ms, r->tmin_ratio, r->rmse, r->psnr, r->peak, r->maxabs,
+            r->visible, r->mean_ref,
             r->rel_rmse, r->rel_bias, pt_rel_noise);
 }
 
@@ -602,6 +640,8 @@ static void aggregate(const sweep *sw, result *const *per_view, int idx, result 
         const result *r = &per_view[s][idx];
         agg->time_ratio += r->time_ratio / sw->nviews;
         agg->time_ms += r->time_ms / sw->nviews;
+        agg->tmin_ratio += r->tmin_ratio / sw->nviews;
+        agg->tmin_ms += r->tmin_ms / sw->nviews;
         agg->rel_rmse += r->rel_rmse / sw->nviews;
         agg->rel_bias += r->rel_bias / sw->nviews;
         agg->psnr += r->psnr / sw->nviews;
@@ -924,8 +964,6 @@ int cmd_sweep(int argc, char **argv)
     /* references and per-view display constants */
     for (int s = 0; s < sw.nviews; s++) {
         view *v = &sw.v[s];
-        if (load_reference(&sw, v))
-            return 1;
         cu_scene *sc;
         cu_error e;
         if (cu_scene_load(&sc, v->path, &e))
@@ -934,6 +972,10 @@ int cmd_sweep(int argc, char **argv)
         v->noise_on = sc->noise;
         cu_sky_white_balance(sc, v->white);
         cu_scene_free(sc);
+        for (int c = 0; c < 3; c++)
+            v->clip[c] = v->exposure > 0 ? 16.0 * v->white[c] / v->exposure : 1e30;
+        if (load_reference(&sw, v))
+            return 1;
         printf("sweep: reference %s: PT noise sqrt(mean sigma^2) = %.4g (%.2f%% of the mean radiance), mean standard "
                "error %.4g\n",
                v->name, v->pt_noise, 100 * v->pt_rel_noise, v->pt_mean_se);
@@ -972,9 +1014,11 @@ int cmd_sweep(int argc, char **argv)
         return fprintf(stderr, "cumulo sweep: cannot write %s\n", path), 1;
     fprintf(sw.csv, "# cumulo sweep: error at %dx%d vs cumulo-pt %d spp; time at %dx%d, median of %d frames after %d "
                     "warm-up; psnr peak = reference 99th-percentile channel value; visible = share of pixels with an "
-                    "8-bit tone-mapped channel differing by more than %d; ALL rows = means over views (max_abs: max)\n",
+                    "8-bit tone-mapped channel differing by more than %d; both images clipped where the tone curve saturates "
+                    "(exposure*L/white = 16); ALL rows = means over views (max_abs: max)\n",
             sw.ew, sw.eh, sw.spp, sw.tw, sw.th, sw.frames, sw.warmup, sw.threshold);
-    fprintf(sw.csv, "kind,scene,knob,value,changes,time_ms,time_ratio,rmse,psnr_db,psnr_peak,max_abs,visible_pct,"
+    fprintf(sw.csv, "kind,scene,knob,value,changes,time_ms,time_ratio,time_min_ms,time_min_ratio,rmse,psnr_db,psnr_peak,"
+                    "max_abs,visible_pct,"
                     "mean_ref,rel_rmse,rel_rmse_denoised,pt_rel_noise\n");
     result *per_view[SW_MAX_SCENES];
     for (int s = 0; s < sw.nviews; s++) {
@@ -1083,18 +1127,20 @@ int cmd_sweep(int argc, char **argv)
     for (int s = 1; s < sw.nviews; s++)
         fprintf(f, ", %s", sw.v[s].name);
     fprintf(f, "). Time: median frame time at %dx%d (%d frames after %d warm-up, wall clock incl. glFinish, %s, "
-               "LP_NUM_THREADS=%s), as a ratio to `high` timed in the same session, mean over views. Error: against "
-               "cumulo-pt (%d spp) at %dx%d; relative RMSE = RMSE / mean reference radiance, mean over views; PSNR "
+               "LP_NUM_THREADS=%s), as a ratio to `high` timed in the same session (high timed three times among the "
+               "variants, frames interleaved round-robin), mean over views. Error: against cumulo-pt (%d spp) at "
+               "%dx%d, both images clipped per channel where the display curve saturates (exposure·L/white = 16: the "
+               "sun disk); relative RMSE = RMSE / mean reference radiance, mean over views; PSNR "
                "peak = the reference's 99th-percentile channel value; visible = share of pixels whose tone-mapped "
                "8-bit sRGB differs by more than %d/255 in a channel. Each knob is changed alone from `high` "
                "(= the README defaults; quality.noise stays as each view sets it).\n\n",
             sw.tw, sw.th, sw.frames, sw.warmup,
             sw.sun_moving ? "sun moved every frame (the sun pass redone)" : "static sun: the sun pass is not in the frame",
             lp ? lp : "(unset)", sw.spp, sw.ew, sw.eh, sw.threshold);
-    fprintf(f, "| knob | value | time ratio | rel. RMSE | Δ rel. RMSE | rel. RMSE, PT noise removed | PSNR dB | visible %% "
-               "| Δ rel. RMSE per −0.1 time |\n");
-    fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
-    fprintf(f, "| **high** | | 1.000 | %.4f | | %.4f | %.1f | %.1f | |\n", agg[0].rel_rmse, agg[0].rel_bias, agg[0].psnr,
+    fprintf(f, "| knob | value | time ratio | time ratio, fastest frames | rel. RMSE | Δ rel. RMSE "
+               "| rel. RMSE, PT noise removed | PSNR dB | visible %% | Δ rel. RMSE per −0.1 time |\n");
+    fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    fprintf(f, "| **high** | | 1.000 | 1.000 | %.4f | | %.4f | %.1f | %.1f | |\n", agg[0].rel_rmse, agg[0].rel_bias, agg[0].psnr,
             agg[0].visible);
     for (int i = 1; i < nv; i++) {
         double dt = agg[i].time_ratio - 1, de = agg[i].rel_rmse - agg[0].rel_rmse;
@@ -1103,8 +1149,8 @@ int cmd_sweep(int argc, char **argv)
             snprintf(buys, sizeof buys, "%+.4f", de / (-dt / 0.1));
         else
             snprintf(buys, sizeof buys, "%s", dt > 0.01 ? "costs time" : "no saving");
-        fprintf(f, "| %s | %s | %.3f | %.4f | %+.4f | %.4f | %.1f | %.1f | %s |\n", KNOBS[vknob[i]].name,
-                KNOBS[vknob[i]].vals[vval[i]], agg[i].time_ratio, agg[i].rel_rmse, de, agg[i].rel_bias, agg[i].psnr,
+        fprintf(f, "| %s | %s | %.3f | %.3f | %.4f | %+.4f | %.4f | %.1f | %.1f | %s |\n", KNOBS[vknob[i]].name,
+                KNOBS[vknob[i]].vals[vval[i]], agg[i].time_ratio, agg[i].tmin_ratio, agg[i].rel_rmse, de, agg[i].rel_bias, agg[i].psnr,
                 agg[i].visible, buys);
     }
     fprintf(f, "\nPresets (budgets: medium ≤ %.2f×, low ≤ %.2f× of high's time; greedy descent from high taking the "
