@@ -14,7 +14,9 @@ DEB_TEST     := xvfb weston
 # qemu-system-x86 boots it, linux-source-6.1 is the kernel it builds, with flex/bison/bc (kconfig and the build),
 # libelf-dev (objtool) and xz-utils (unpacking the source).
 DEB_VM       := qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
-DEB_PACKAGES := $(DEB_CORE) $(DEB_TEST) $(DEB_VM)
+# Plots of `make sweep`, tools/mie/plot_phase.sh and tools/slab/plots.sh (the committed PNGs do not need it).
+DEB_PLOTS    := gnuplot-nox
+DEB_PACKAGES := $(DEB_CORE) $(DEB_TEST) $(DEB_VM) $(DEB_PLOTS)
 PC_REQUIRED  := egl glesv2 osmesa libpng cmocka gsl
 
 # Everything, for CI and developers.
