@@ -1,7 +1,8 @@
 #!/bin/sh
 # tests/vm/build-kernel.sh: builds the test VM's kernel (tinyconfig + tests/vm/kernel.config) from Debian's
-# linux-source-6.1 into build/vm/bzImage. Cached: rebuilt only when the fragment, this script or the kernel source
-# package changes (the key of the last build is kept in build/vm/bzImage.key).
+# linux-source-6.1 into build/vm/bzImage. Cached: rebuilt only when the fragment or the kernel source package
+# changes (the key of the last build is kept in build/vm/bzImage.key). Each kernel built is also kept outside the
+# tree, in $VM_KERNEL_CACHE (default ~/.cache/cumulo-vm), so a fresh clone on the same machine (CI) reuses it.
 # Usage: sh tests/vm/build-kernel.sh [-j N]     (from the top of the tree; -j defaults to 2)
 set -eu
 JOBS=2
@@ -18,10 +19,16 @@ for tool in flex bison bc gcc make; do
   command -v $tool >/dev/null 2>&1 || { echo "vm: '$tool' is needed to build the kernel (make deps)" >&2; exit 1; }
 done
 pkgver=$(dpkg-query -W -f='${Version}' linux-source-6.1 2>/dev/null || stat -c '%s %Y' "$TAR")
-key=$(cat "$FRAG" "$0" | sha256sum | cut -c1-16)-$pkgver
+key=$(sha256sum <"$FRAG" | cut -c1-16)-$pkgver
+CACHE=${VM_KERNEL_CACHE:-${HOME:-/root}/.cache/cumulo-vm}
 mkdir -p $VM
 if [ -f $VM/bzImage ] && [ "$(cat $VM/bzImage.key 2>/dev/null)" = "$key" ]; then
   echo "vm: kernel up to date ($VM/bzImage, key $key)"
+  exit 0
+fi
+if [ -f "$CACHE/bzImage-$key" ]; then
+  cp "$CACHE/bzImage-$key" $VM/bzImage && echo "$key" >$VM/bzImage.key
+  echo "vm: kernel for key $key taken from $CACHE"
   exit 0
 fi
 start=$(date +%s)
@@ -57,4 +64,5 @@ if ! make -s -C $SRC O="$OBJ" ARCH=x86_64 -j"$JOBS" bzImage >$VM/build.log 2>&1;
 fi
 cp "$OBJ/arch/x86/boot/bzImage" $VM/bzImage
 echo "$key" >$VM/bzImage.key
+mkdir -p "$CACHE" 2>/dev/null && cp $VM/bzImage "$CACHE/bzImage-$key" 2>/dev/null || true
 echo "vm: built $VM/bzImage in $(( $(date +%s) - start )) s"
