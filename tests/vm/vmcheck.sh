@@ -7,8 +7,8 @@
 # Arguments: the guest scripts to run (drm gpio evdev; default all).
 set -u
 OUT=build/test-output
+rm -rf $OUT/vm $OUT/vm-summary.txt
 mkdir -p $OUT/vm
-rm -f $OUT/vm-summary.txt $OUT/vm/*
 fail() {
   echo "vmcheck: FAILED: $1" >&2
   echo "[  FAILED  ] vmcheck: $1" >$OUT/vm/setup.log
