@@ -1,6 +1,7 @@
 /* platform/egl_surfaceless.c: headless back end on EGL_MESA_platform_surfaceless: a real GLES 3 context with no
  * window system, rendering into an offscreen framebuffer (the default for tests, screenshots and benchmarks). */
 #include "display.h"
+#include "egl_common.h"
 #include "headless_fbo.h"
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -15,27 +16,9 @@ struct cu_display {
     cu_headless_fbo fb;
 };
 
-static void *egl_proc(const char *name)
-{
-    /* eglGetProcAddress returns a function pointer; ISO C has no cast to void *, so copy the bits. */
-    __eglMustCastToProperFunctionPointerType f = eglGetProcAddress(name);
-    void *p;
-    memcpy(&p, &f, sizeof p);
-    return p;
-}
-
-static const char *egl_err(void)
-{
-    static const char *names[] = {"EGL_SUCCESS", "EGL_NOT_INITIALIZED", "EGL_BAD_ACCESS", "EGL_BAD_ALLOC",
-                                  "EGL_BAD_ATTRIBUTE", "EGL_BAD_CONFIG", "EGL_BAD_CONTEXT", "EGL_BAD_CURRENT_SURFACE",
-                                  "EGL_BAD_DISPLAY", "EGL_BAD_MATCH", "EGL_BAD_NATIVE_PIXMAP",
-                                  "EGL_BAD_NATIVE_WINDOW", "EGL_BAD_PARAMETER", "EGL_BAD_SURFACE",
-                                  "EGL_CONTEXT_LOST"};
-    EGLint e = eglGetError();
-    if (e >= EGL_SUCCESS && e <= EGL_CONTEXT_LOST)
-        return names[e - EGL_SUCCESS];
-    return "unknown EGL error";
-}
+/* eglGetProcAddress as void * and the last EGL error's name: shared with the windowed back ends. */
+#define egl_proc cu_egl_proc
+#define egl_err cu_egl_error
 
 static void egl_close(cu_display *d)
 {

@@ -19,7 +19,7 @@ $(B)/test_math: tests/test_math.c $(B)/libcumulo.a
 	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_math
 
-HEADLESS_SRCS := platform/egl_surfaceless.c platform/osmesa.c platform/headless_fbo.c
+HEADLESS_SRCS := platform/egl_common.c platform/egl_surfaceless.c platform/osmesa.c platform/headless_fbo.c
 $(B)/test_render: tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
 	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) \
 	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
