@@ -3,15 +3,24 @@
 // eqs. 3.20-3.22), over the ray's in-cloud intervals in front-to-back order, output premultiplied over the sky.
 //
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
-// NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 diffusion), MS_OCTAVES, PHASE_PEAK (chopped Mie),
-// FULLSCREEN (camera inside),
-// SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl).
+// NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
+// PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
+// inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
 // but they are a few multiplies per sample; the cost is not worth a second precision domain.
 #include "density.glsl"
 #include "sunmap.glsl"
+#if MS_MODE >= 2
+#include "ms_slab.glsl"
+uniform sampler2D u_slab_a, u_slab_n;   // the slab map from the sun (slab_map.frag), mipmapped
+uniform float u_slab_lod;               // its level for the fixed blur ms.blur (metres -> texels -> log2)
+#if SKY_SPLIT
+uniform sampler2D u_sky_a, u_sky_n;     // the same from the zenith, for sky and ground light
+uniform vec3 u_sky_right, u_sky_up;
+#endif
+#endif
 
 #if FULLSCREEN
 in vec2 v_ndc;
@@ -29,31 +38,12 @@ uniform vec3 u_peak_f;         // weight f of the removed peak per channel (eq. 
 #endif
 uniform int u_phase_n;
 uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
-uniform vec3 u_ambient;        // mean radiance of sky and ground over the sphere
-#if MS_MODE == 2
-uniform float u_one_minus_g;   // similarity scaling of optical depth for the diffuse field
-#endif
+uniform vec3 u_sky_rad;        // mean radiance of the sky (upper hemisphere)
+uniform vec3 u_ground_rad;     // radiance of the ground (lower hemisphere; the sky colour for a constant sky)
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
 uniform float u_ms_g;          // anisotropy of the octave phase functions
 out vec4 o_color;
 
-#if MS_MODE == 2
-// Multiply scattered light from diffusion theory in a conservative slab lit at normal incidence, thickness and depth
-// taken along the sun ray (the slab model of a later stage fits orientation too). Similarity-scaled optical depths
-// t' = (1-g) k_e t; net flux F = T E with the thick-slab transmittance T = (4/3) u(1) / (t'_tot + 1.42),
-// u(1) = 9/7 (VALIDATION.md); the mean diffuse radiance falls linearly to zero at the extrapolated far boundary
-// (0.71 beyond it): J = 3 F (t'_tot - t' + 0.71) / (4 pi). (1 - e^-t'_tot) takes it to zero for thin slabs, where
-// diffusion does not hold and a slab of scaled depth t' scatters about t' of the beam out of the peak: a thin cloud
-// is then lit by single scattering alone, as the adding-doubling reflectances say (tau = 1, g = 0.85: R = 0.042).
-// Returns J / E.
-float diffuse_radiance(vec2 slab)
-{
-    float k = u_one_minus_g * u_ke;
-    float tp = k * slab.x, tt = k * slab.y;
-    float T = min((4.0 / 3.0) * (9.0 / 7.0) / (tt + 1.42), 1.0);
-    return 3.0 * T * (tt - tp + 0.71) / (4.0 * PI) * (1.0 - exp(-tt));
-}
-#endif
 
 vec3 phase_table(float cos_theta, int row)
 {
@@ -70,20 +60,22 @@ float hg(float g, float mu)
 }
 
 #if PHASE_PEAK
-// Chopped peak (delta-M): light scattered into the removed forward peak keeps travelling with the sunbeam, so the
-// beam that lights single scattering with P~ is attenuated by the scaled extinction (1 - f) k_e.
-#define SUN_TAU_SCALE (1.0 - u_peak_f.g)
+// Chopped peak (delta-M): light scattered into the removed forward peak keeps travelling in its direction, so light
+// on its way (the sunbeam to a sample, scattered light to the eye) is attenuated by the scaled extinction (1 - f) k_e,
+// and P~ / (1 - f) is the phase function of the remaining scattering. This is also how the slab tables were made
+// (tools/slab: delta-M transport with the chopped table), so single and multiple scattering agree.
+#define DM_SCALE (1.0 - u_peak_f.g)
 #else
-#define SUN_TAU_SCALE 1.0
+#define DM_SCALE 1.0
 #endif
 
 float ph_oct[MS_OCTAVES];
 
 // Light scattered toward the eye per unit extinction at p, relative to the sun's irradiance: single scattering of
 // the attenuated sunbeam (eq. 3.21 without k_e and without the view transmittance) plus the multiple-scattering term.
-vec3 source(vec3 p, float ke, vec3 ph0, out vec2 slab)
+vec3 source(vec3 p, float ke, vec3 ph0)
 {
-    float ts = sun_optical_depth(p, ke, slab) * SUN_TAU_SCALE;
+    float ts = sun_optical_depth(p, ke) * DM_SCALE;
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
     float ao = 1.0;
@@ -91,11 +83,44 @@ vec3 source(vec3 p, float ke, vec3 ph0, out vec2 slab)
         ao *= u_ms_abc.x;
         S += vec3(ph_oct[o] * exp(-ao * ts));
     }
-#elif MS_MODE == 2
-    S += vec3(diffuse_radiance(slab));
 #endif
     return S;
 }
+
+#if MS_MODE >= 2
+// Multiple scattering (orders 2..16+) leaving the cloud at p toward the eye, per unit sun irradiance: Bouthors' slab
+// model with Kol's simplification (a fixed blur instead of the collector search). Angles per eqs. 3.56-3.57; the
+// scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it).
+float ms_slab(vec3 p, vec3 dir, float mu)
+{
+    float t, d;
+    vec3 n;
+    if (!fit_slab(u_slab_a, u_slab_n, u_sun_dir, u_sun_right, u_sun_up, u_sun_R, u_slab_lod, p, t, d, n))
+        return 0.0;
+    float thv = 180.0 - degrees(acos(clamp(dot(-dir, n), -1.0, 1.0)));
+    float thl = degrees(acos(clamp(dot(u_sun_dir, n), -1.0, 1.0)));
+    // Kol 3.4.5: seen from below the fitted slab's normal a point at d = 0 would get no light at all (a protruding
+    // part lit from the side); its depth is raised to at least t / 10 there. Seen from above, d = 0 is the true exit.
+    d = max(d, smoothstep(100.0, 80.0, thv) * 0.1 * t);
+    return slab_radiance(1, t, d, thv, thl, degrees(acos(clamp(mu, -1.0, 1.0))));
+}
+#endif
+
+#if SKY_SPLIT
+// Share of the ambient light at p that comes from the sky rather than the ground (Bouthors: sky and ground light
+// through the isotropic group): the 16+ response of the vertical slab to light from above and from below.
+float sky_share(vec3 p, vec3 dir)
+{
+    float t, d;
+    vec3 n;
+    if (!fit_slab(u_sky_a, u_sky_n, vec3(0.0, 1.0, 0.0), u_sky_right, u_sky_up, u_sun_R, u_slab_lod, p, t, d, n))
+        return 0.5;
+    float thv = 180.0 - degrees(acos(clamp(dot(-dir, n), -1.0, 1.0)));
+    float top = slab_radiance(7, t, d, thv, 0.0, 90.0);
+    float bottom = slab_radiance(7, t, t - d, 180.0 - thv, 0.0, 90.0);
+    return top + bottom > 1e-12 ? top / (top + bottom) : 0.5;
+}
+#endif
 
 void main()
 {
@@ -125,7 +150,9 @@ void main()
 #endif
 
     float tau = 0.0;      // optical depth from the eye to the current sample
+    float taup = 0.0;     // the same with the delta-M extinction, for scattered light on its way to the eye
     vec3 L = vec3(0.0);   // scattered radiance / sun irradiance, attenuated to the eye
+    vec3 amb = vec3(0.0); // sky and ground light
     int k = 0, intervals = 0;
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
@@ -133,6 +160,7 @@ void main()
         int merged;
         k = next_interval(k, a, b, merged);
         intervals++;
+        float tau0 = tau, taup0 = taup;
         // Segments in geometric progression, shortest at the entry (DESIGN: Kol's eq. 3.23 is garbled).
         int nseg = SEGMENTS * merged;
         float len = b - a;
@@ -145,9 +173,9 @@ void main()
         float nudge = min(1e-3 * len, 0.05);
         float t = a;
         vec3 p = ro + dir * (t + nudge);
+        vec3 p_entry = p;     // Kol's "multiple scattering point": the interval's entry, a hair inside
         float ke_prev = extinction(p, t + nudge);
-        vec2 slab;
-        vec3 S_prev = source(p, ke_prev, ph0, slab);
+        vec3 S_prev = source(p, ke_prev, ph0);
         for (int i = 0; i < nseg; i++) {
             float x = (i == nseg - 1) ? (b - t) : seg;
             t += x;
@@ -155,22 +183,37 @@ void main()
             p = ro + dir * ts_at;
             float ke = extinction(p, ts_at);
             float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
-            vec3 S = source(p, ke, ph0, slab);
+            vec3 S = source(p, ke, ph0);
 #if INTEGRATION_KOL
             // eq. 3.20: trapezoids of F = k_e S e^-tau. Overestimates a segment that is optically thick by
             // (dtau/2) coth(dtau/2): 7% at dtau = 0.9, 66% at dtau = 3.
-            L += x * 0.5 * (ke_prev * S_prev * exp(-tau) + ke * S * exp(-(tau + dtau)));
+            L += x * 0.5 * (ke_prev * S_prev * exp(-taup) + ke * S * exp(-(taup + DM_SCALE * dtau)));
 #else
             // Energy-conserving: the source per unit extinction S taken as its segment mean, the extinction
-            // integrated exactly: the segment adds e^-tau (1 - e^-dtau) <S>. Exact for any k_e profile when S is
-            // uniform, so a uniform environment comes back unchanged (the furnace test).
-            L += exp(-tau) * (1.0 - exp(-dtau)) * 0.5 * (S_prev + S);
+            // integrated exactly: the segment adds e^-tau (1 - e^-dtau) <S>, in delta-M form (tau' = (1 - f) tau,
+            // phase P~ / (1 - f)). Exact for any k_e profile when S is uniform.
+            L += exp(-taup) * (1.0 - exp(-DM_SCALE * dtau)) * 0.5 * (S_prev + S) / DM_SCALE;
 #endif
             tau += dtau;
+            taup += DM_SCALE * dtau;
             ke_prev = ke;
             S_prev = S;
             seg *= r;
         }
+#if MS_MODE >= 2
+        // The interval's multiple scattering, evaluated once at its entry and blended with its opacity (Kol 3.4.4).
+        L += exp(-taup0) * (1.0 - exp(-(taup - taup0))) * vec3(ms_slab(p_entry, dir, mu));
+#endif
+        // Sky and ground light: an isotropic field of the environment's mean radiance J in the cloud. A uniform
+        // source in a non-absorbing medium seen through optical depth tau gives J (1 - e^-tau): exact for a uniform
+        // environment (cloud + transmitted background = J everywhere, the furnace test). J mixes the sky's and the
+        // ground's mean radiance: half and half, or (SKY_SPLIT) as the slab model says light reaches p.
+#if SKY_SPLIT
+        float w_sky = sky_share(p_entry, dir);
+#else
+        float w_sky = 0.5;
+#endif
+        amb += exp(-tau0) * (1.0 - exp(-(tau - tau0))) * mix(u_ground_rad, u_sky_rad, w_sky);
     }
 #if PHASE_PEAK
     // The removed peak (Kol eqs. 3.66-3.69): light scattered into the forward peak and still on the beam. With the
@@ -182,9 +225,5 @@ void main()
         L += pp / max(u_peak_f, vec3(1e-6)) * (exp(-(1.0 - u_peak_f) * tau) - vec3(exp(-tau)));
 #endif
     float alpha = 1.0 - exp(-tau);
-    // Sky and ground light: the environment's mean radiance J (over the whole sphere) as an isotropic field in the
-    // cloud. A uniform source in a non-absorbing medium seen through optical depth tau gives J (1 - e^-tau): exact
-    // for a uniform environment (then cloud + transmitted background = J everywhere), the zeroth-order term for the
-    // sky above and the ground below.
-    o_color = vec4(u_sun_irr * L + u_ambient * alpha, alpha);
+    o_color = vec4(u_sun_irr * L + amb, alpha);
 }

@@ -1,5 +1,5 @@
 #version 300 es
-// shaders_gles/sun_depth.frag: front (or, with SUN_BACK, back) depth of the ellipsoid union seen from the sun (Kol 3.1.2). Depth is the exact
+// shaders_gles/sun_depth.frag: front depth of the ellipsoid union seen from the sun (Kol 3.1.2). Depth is the exact
 // analytic entry of this fragment's sun ray into its ellipsoid (not the polygonal hull), as a fraction of 4R.
 precision highp float;
 in vec3 v_pos;
@@ -21,11 +21,7 @@ void main()
         discard; // the hull is larger than the ellipsoid: its rim misses
     float s = sqrt(disc);
     float qq = -0.5 * (B + (B >= 0.0 ? s : -s));
-#if SUN_BACK
-    float t0 = max(qq / A, C / qq); // exit: the back map keeps the farthest (GL_GREATER)
-#else
     float t0 = min(qq / A, C / qq);
-#endif
     gl_FragDepth = clamp(t0 / (4.0 * u_sun_R), 0.0, 1.0);
     o_color = vec4(0.0);
 }

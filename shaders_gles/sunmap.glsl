@@ -4,8 +4,7 @@
 //      tau at 1/4, 1/2, 3/4 and 1 of its own interval. Exact in gaps and concavities; noise included.
 //   SHADOW_PEEL 0: Kol's estimate l * k_e(p) with l the distance below the front depth (wrong across gaps and
 //      concavities, and banded where k_e(p) varies; kept for the trade study).
-// Both also return `slab`: (in-cloud distance from the first entry down to the sample, total in-cloud thickness)
-// along the sun ray, for the multiple-scattering term. Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER.
+// Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER.
 uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_right, u_sun_up;
 uniform float u_sun_R;         // the sun plane is at 2R along u_sun_dir, maps cover [-R, R]^2
@@ -16,16 +15,12 @@ uniform sampler2D u_sun_tau;     // tau at 1/4, 1/2, 3/4, 1 of interval j, count
 uniform int u_sun_intervals;     // intervals present in this sun direction (<= SUN_INTERVALS)
 #else
 uniform sampler2D u_sun_depth;   // front depth / 4R
-#if MS_MODE == 2
-uniform sampler2D u_sun_back;    // back depth / 4R
-#endif
 #endif
 
 #if SHADOW_PEEL
-float tau_in_texel(ivec2 tc, float z, out vec2 slab)
+float tau_in_texel(ivec2 tc, float z)
 {
-    float tau = 0.0, depth = 0.0, total = 0.0;
-    bool found = false;
+    float tau = 0.0;
     for (int j = 0; j < SUN_INTERVALS; j++) {
         if (j >= u_sun_intervals)
             break;
@@ -34,32 +29,25 @@ float tau_in_texel(ivec2 tc, float z, out vec2 slab)
         if (ab.x > 1e29)
             break; // no more intervals on this ray
         float len = ab.y - ab.x;
-        total += len;
-        if (found)
-            continue;
         vec4 q = texelFetch(u_sun_tau, at, 0);
         if (z >= ab.y) {
             tau += q.w;
-            depth += len;
         } else {
             if (z > ab.x) {
                 float f = clamp((z - ab.x) / max(len, 1e-6), 0.0, 1.0) * 4.0;
                 float lo = f < 1.0 ? 0.0 : f < 2.0 ? q.x : f < 3.0 ? q.y : q.z;
                 float hi = f < 1.0 ? q.x : f < 2.0 ? q.y : f < 3.0 ? q.z : q.w;
                 tau += mix(lo, hi, fract(min(f, 3.9999)));
-                depth += z - ab.x;
             }
-            found = true;
+            break;
         }
     }
-    slab = vec2(depth, total);
     return tau;
 }
 #endif
 
-float sun_optical_depth(vec3 p, float ke, out vec2 slab)
+float sun_optical_depth(vec3 p, float ke)
 {
-    slab = vec2(0.0);
     vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
     float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
 #if SHADOW_PEEL
@@ -69,15 +57,13 @@ float sun_optical_depth(vec3 p, float ke, out vec2 slab)
 #if SUN_FILTER
     // Bilinear over the four texels' own estimates (a deep-opacity-map lookup, not a filter of depths).
     vec2 w = f - vec2(i0);
-    vec2 s00, s10, s01, s11;
-    float t00 = tau_in_texel(clamp(i0, ivec2(0), ivec2(hi)), z, s00);
-    float t10 = tau_in_texel(clamp(i0 + ivec2(1, 0), ivec2(0), ivec2(hi)), z, s10);
-    float t01 = tau_in_texel(clamp(i0 + ivec2(0, 1), ivec2(0), ivec2(hi)), z, s01);
-    float t11 = tau_in_texel(clamp(i0 + ivec2(1, 1), ivec2(0), ivec2(hi)), z, s11);
-    slab = mix(mix(s00, s10, w.x), mix(s01, s11, w.x), w.y);
+    float t00 = tau_in_texel(clamp(i0, ivec2(0), ivec2(hi)), z);
+    float t10 = tau_in_texel(clamp(i0 + ivec2(1, 0), ivec2(0), ivec2(hi)), z);
+    float t01 = tau_in_texel(clamp(i0 + ivec2(0, 1), ivec2(0), ivec2(hi)), z);
+    float t11 = tau_in_texel(clamp(i0 + ivec2(1, 1), ivec2(0), ivec2(hi)), z);
     return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 #else
-    return tau_in_texel(clamp(ivec2(floor(uv * float(u_sun_size))), ivec2(0), ivec2(hi)), z, slab);
+    return tau_in_texel(clamp(ivec2(floor(uv * float(u_sun_size))), ivec2(0), ivec2(hi)), z);
 #endif
 #else
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
@@ -86,11 +72,6 @@ float sun_optical_depth(vec3 p, float ke, out vec2 slab)
     if (front >= 1.0)
         return 0.0;
     float l = max(z - front * 4.0 * u_sun_R, 0.0);
-#if MS_MODE == 2
-    float back = textureLod(u_sun_back, uv, 0.0).r;
-    float t = max(back - front, 0.0) * 4.0 * u_sun_R;
-    slab = vec2(min(l, t), t);
-#endif
     return l * ke;
 #endif
 }

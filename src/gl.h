@@ -20,7 +20,7 @@
     X(DrawElementsInstanced, DRAWELEMENTSINSTANCED) X(Enable, ENABLE) \
     X(EnableVertexAttribArray, ENABLEVERTEXATTRIBARRAY) X(EndQuery, ENDQUERY) X(Finish, FINISH) X(Flush, FLUSH) \
     X(FramebufferRenderbuffer, FRAMEBUFFERRENDERBUFFER) X(FramebufferTexture2D, FRAMEBUFFERTEXTURE2D) \
-    X(GenBuffers, GENBUFFERS) X(GenFramebuffers, GENFRAMEBUFFERS) X(GenQueries, GENQUERIES) \
+    X(GenBuffers, GENBUFFERS) X(GenerateMipmap, GENERATEMIPMAP) X(GenFramebuffers, GENFRAMEBUFFERS) X(GenQueries, GENQUERIES) \
     X(GenRenderbuffers, GENRENDERBUFFERS) X(GenTextures, GENTEXTURES) X(GenVertexArrays, GENVERTEXARRAYS) \
     X(GetError, GETERROR) X(GetIntegerv, GETINTEGERV) X(GetProgramInfoLog, GETPROGRAMINFOLOG) \
     X(GetProgramiv, GETPROGRAMIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \

@@ -1,6 +1,7 @@
 /* src/renderer.c: renderer lifetime, scene upload (shader variants for exactly the scene's features, textures,
  * hull meshes) and the frame: sun pass, sky pass, depth pre-pass, cloud pass (GL_EQUAL), tone map. */
 #include "renderer.h"
+#include "slabmap.h"
 #include "sunmap.h"
 #include <stdarg.h>
 #include <stdio.h>
@@ -100,7 +101,7 @@ const char *cu_renderer_gl_string(const cu_renderer *r, int which)
 
 static void delete_programs(cu_renderer *r)
 {
-    GLuint *p[] = {&r->prog_sun, &r->prog_sun_back, &r->prog_sun_opacity, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
+    GLuint *p[] = {&r->prog_sun, &r->prog_sun_opacity, &r->prog_depth, &r->prog_cloud, &r->prog_cloud_fs, &r->prog_sky, &r->prog_tonemap,
                    &r->prog_copy};
     for (size_t i = 0; i < sizeof p / sizeof p[0]; i++)
         if (*p[i]) {
@@ -113,17 +114,15 @@ static void delete_scene_objects(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
     delete_programs(r);
-    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->sun_back_tex, r->hdr_tex, r->sun_layers_tex,
-                    r->sun_tau_tex};
+    cu_slab_delete(r);
+    GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->hdr_tex, r->sun_layers_tex, r->sun_tau_tex};
     for (size_t i = 0; i < sizeof tex / sizeof tex[0]; i++)
         if (tex[i])
             gl->DeleteTextures(1, &tex[i]);
-    r->noise_tex = r->phase_tex = r->sun_tex = r->sun_back_tex = r->hdr_tex = r->sun_layers_tex = r->sun_tau_tex = 0;
+    r->noise_tex = r->phase_tex = r->sun_tex = r->hdr_tex = r->sun_layers_tex = r->sun_tau_tex = 0;
     if (r->sun_opacity_fbo) gl->DeleteFramebuffers(1, &r->sun_opacity_fbo);
     r->sun_opacity_fbo = 0;
     if (r->sun_fbo) gl->DeleteFramebuffers(1, &r->sun_fbo);
-    if (r->sun_back_fbo) gl->DeleteFramebuffers(1, &r->sun_back_fbo);
-    r->sun_back_fbo = 0;
     if (r->hdr_fbo) gl->DeleteFramebuffers(1, &r->hdr_fbo);
     if (r->hdr_depth) gl->DeleteRenderbuffers(1, &r->hdr_depth);
     r->sun_fbo = r->hdr_fbo = r->hdr_depth = 0;
@@ -145,6 +144,7 @@ void cu_renderer_destroy(cu_renderer *r)
     delete_scene_objects(r);
     if (r->noise_ready)
         cu_noise_destroy(&r->noise);
+    free(r->slab_model);
     free(r);
 }
 
@@ -180,7 +180,7 @@ static int upload_phase(cu_renderer *r, cu_error *err)
     cu_phase_table t;
     if (cu_phase_table_build(&t, &r->scene, r->desc.data_dir ? r->desc.data_dir : "data", err))
         return 1;
-    r->phase_g_eff = t.g_full[1];
+
     for (int c = 0; c < 3; c++)
         r->peak_f[c] = t.f[c];
     r->cloud.ke = cu_phase_table_extinction(&t, &r->scene); /* the table's sigma_ext wins (DESIGN.md) */
@@ -263,23 +263,24 @@ static GLuint hull_program(cu_renderer *r, const char *fs, const char *defines, 
 static int build_programs(cu_renderer *r, cu_error *err)
 {
     const cu_scene *s = &r->scene;
-    char defs[1024];
+    char defs[1400];
     /* Model only what the scene requires: counts and features are compile-time constants. */
-    snprintf(defs, sizeof defs,
+    int n = snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
              "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
              "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
-             s->profile == CU_PROFILE_KOL, (int)s->ms_mode, s->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
+             s->profile == CU_PROFILE_KOL, r->ms_mode, r->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, r->shadow == CU_SHADOW_PEEL, s->sun_intervals,
              s->sun_filter, s->sun_samples, s->integration);
-    char fs_defs[1100], hull_defs[1100], lin[1100], back_defs[1100];
-    snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n#define SUN_BACK 0\n", defs);
-    snprintf(back_defs, sizeof back_defs, "%s#define FULLSCREEN 0\n#define SUN_BACK 1\n", defs);
+    if (n < 0 || cu_slab_defines(r, defs + n, sizeof defs - (size_t)n))
+        return fail(err, "shader defines too long");
+    char fs_defs[1500], hull_defs[1500], lin[1500];
+    snprintf(hull_defs, sizeof hull_defs, "%s#define FULLSCREEN 0\n#define LINEAR_OUTPUT 0\n", defs);
     snprintf(fs_defs, sizeof fs_defs, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 0\n", defs);
     snprintf(lin, sizeof lin, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 1\n", defs);
-    if (r->need_sun_back && !(r->prog_sun_back = hull_program(r, "sun_depth.frag", back_defs, err)))
+    if (cu_slab_targets(r, fs_defs, err))
         return 1;
     if (r->shadow == CU_SHADOW_PEEL) {
         if (!(r->prog_sun_opacity = cu_gl_program(&r->gl, "fullscreen.vert", "sun_opacity.frag", fs_defs, err)))
@@ -337,7 +338,6 @@ static GLuint make_float_texture(cu_gl *gl, int w, int h)
 static int make_sun_map(cu_renderer *r, cu_error *err)
 {
     cu_gl *gl = &r->gl;
-    r->sun_size = r->scene.sun_map_size;
     if (r->shadow == CU_SHADOW_PEEL) {
         /* The opacity map: one tile per interval, side by side, two RGBA32F targets written in one pass. */
         int w = r->sun_size * r->scene.sun_intervals, h = r->sun_size;
@@ -355,12 +355,7 @@ static int make_sun_map(cu_renderer *r, cu_error *err)
             return fail(err, "sun opacity map: framebuffer incomplete (0x%x)", st);
         return 0;
     }
-    if (make_depth_target(r, &r->sun_tex, &r->sun_fbo, err))
-        return 1;
-    /* The back map exists only when a term needs the thickness along the sun ray. */
-    if (r->need_sun_back && make_depth_target(r, &r->sun_back_tex, &r->sun_back_fbo, err))
-        return 1;
-    return 0;
+    return make_depth_target(r, &r->sun_tex, &r->sun_fbo, err);
 }
 
 int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
@@ -379,9 +374,9 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
                                "using the front-depth estimate");
         r->shadow = CU_SHADOW_FRONT;
     }
-    r->need_sun_back = r->shadow == CU_SHADOW_FRONT && r->scene.ms_mode == CU_MS_DIFFUSION;
     cu_sky_white_balance(&r->scene, r->white);
-    if (upload_phase(r, err) || build_programs(r, err) || make_sun_map(r, err))
+    r->sun_size = r->scene.sun_map_size;
+    if (upload_phase(r, err) || cu_slab_load(r, err) || build_programs(r, err) || make_sun_map(r, err))
         return 1;
     upload_hulls(r);
     r->sun_dirty = 1;
@@ -439,8 +434,7 @@ static double sun_R(const cu_renderer *r)
     return cu_sun_radius(&r->cloud);
 }
 
-/* Uniforms of density.glsl: ellipsoids, extinction, boundary, noise. */
-static void set_density_uniforms(cu_renderer *r, GLuint p)
+void cu_set_density_uniforms(cu_renderer *r, GLuint p)
 {
     cu_gl *gl = &r->gl;
     set_ellipsoid_uniforms(r, p);
@@ -471,16 +465,12 @@ static void set_sun_uniforms(cu_renderer *r, GLuint p)
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_layers"), 2);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_tau"), 3);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_back"), 3);
 }
 
-static void sun_pass(cu_renderer *r)
+static void shadow_pass(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
     double R = sun_R(r);
-    sun_basis(r, &r->sun_right, &r->sun_up);
-    gl->Disable(GL_CULL_FACE);
-    gl->Disable(GL_BLEND);
     if (r->shadow == CU_SHADOW_PEEL) {
         /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
         int J = cu_sun_max_intervals(&r->cloud, r->sky.sun_dir, 64);
@@ -493,14 +483,13 @@ static void sun_pass(cu_renderer *r)
         gl->Viewport(0, 0, r->sun_size * r->sun_intervals, r->sun_size);
         gl->Disable(GL_DEPTH_TEST);
         gl->UseProgram(p);
-        set_density_uniforms(r, p);
+        cu_set_density_uniforms(r, p);
         set_sun_uniforms(r, p);
         gl->ActiveTexture(GL_TEXTURE0);
         gl->BindTexture(GL_TEXTURE_3D, r->noise_tex);
         gl->BindVertexArray(r->empty_vao);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
         gl->BindVertexArray(0);
-        r->sun_dirty = 0;
         return;
     }
     vec3 eye = v3_scale(r->sky.sun_dir, 2.0 * R);
@@ -512,23 +501,33 @@ static void sun_pass(cu_renderer *r)
     gl->DepthMask(GL_TRUE);
     gl->Enable(GL_DEPTH_TEST);
     gl->BindVertexArray(r->hull_vao);
-    for (int back = 0; back <= r->need_sun_back; back++) {
-        GLuint prog = back ? r->prog_sun_back : r->prog_sun;
-        gl->BindFramebuffer(GL_FRAMEBUFFER, back ? r->sun_back_fbo : r->sun_fbo);
-        gl->ClearDepthf(back ? 0.0f : 1.0f);
-        gl->Clear(GL_DEPTH_BUFFER_BIT);
-        gl->DepthFunc(back ? GL_GREATER : GL_LESS);
-        gl->UseProgram(prog);
-        gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_viewproj"), 1, GL_FALSE, vp);
-        set_ellipsoid_uniforms(r, prog);
-        gl->Uniform3f(gl->GetUniformLocation(prog, "u_sun_dir"), (float)r->sky.sun_dir.x, (float)r->sky.sun_dir.y,
-                      (float)r->sky.sun_dir.z);
-        gl->Uniform1f(gl->GetUniformLocation(prog, "u_sun_R"), (float)R);
-        gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
-    }
+    GLuint prog = r->prog_sun;
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
     gl->ClearDepthf(1.0f);
+    gl->Clear(GL_DEPTH_BUFFER_BIT);
     gl->DepthFunc(GL_LESS);
+    gl->UseProgram(prog);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_viewproj"), 1, GL_FALSE, vp);
+    set_ellipsoid_uniforms(r, prog);
+    gl->Uniform3f(gl->GetUniformLocation(prog, "u_sun_dir"), (float)r->sky.sun_dir.x, (float)r->sky.sun_dir.y,
+                  (float)r->sky.sun_dir.z);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_sun_R"), (float)R);
+    gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
     gl->BindVertexArray(0);
+}
+
+/* Everything seen from the sun: redone only when the sun or the clouds change. The zenith slab map depends on the
+ * clouds alone. */
+static void sun_pass(cu_renderer *r)
+{
+    cu_gl *gl = &r->gl;
+    sun_basis(r, &r->sun_right, &r->sun_up);
+    gl->Disable(GL_CULL_FACE);
+    gl->Disable(GL_BLEND);
+    shadow_pass(r);
+    cu_slab_render(r, 0);
+    if (r->sky_slab_dirty)
+        cu_slab_render(r, 1);
     r->sun_dirty = 0;
 }
 
@@ -596,7 +595,7 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_viewproj"), 1, GL_FALSE, inv_vp);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_cam"), (float)cam.x, (float)cam.y, (float)cam.z);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_bound_R"), (float)r->cloud.bound_radius);
-    set_density_uniforms(r, p);
+    cu_set_density_uniforms(r, p);
     set_sun_uniforms(r, p);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_seg_ratio"), (float)s->segment_ratio);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_phase"), 1);
@@ -604,11 +603,13 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sun_irr"), (float)r->sky.sun_irradiance[0],
                   (float)r->sky.sun_irradiance[1], (float)r->sky.sun_irradiance[2]);
     double amb = s->sky_light ? 1.0 : 0.0;
-    gl->Uniform3f(gl->GetUniformLocation(p, "u_ambient"), (float)(amb * r->sky.ambient[0]),
-                  (float)(amb * r->sky.ambient[1]), (float)(amb * r->sky.ambient[2]));
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_sky_rad"), (float)(amb * r->sky.sky_mean[0]),
+                  (float)(amb * r->sky.sky_mean[1]), (float)(amb * r->sky.sky_mean[2]));
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_ground_rad"), (float)(amb * r->sky.ground_mean[0]),
+                  (float)(amb * r->sky.ground_mean[1]), (float)(amb * r->sky.ground_mean[2]));
+    cu_slab_uniforms(r, p);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_ms_abc"), (float)s->ms_a, (float)s->ms_b, (float)s->ms_c);
     gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_one_minus_g"), (float)(1.0 - r->phase_g_eff));
     gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
                   (float)r->peak_f[2]);
 }
@@ -692,8 +693,9 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->ActiveTexture(GL_TEXTURE2);
     gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_layers_tex : r->sun_tex);
     gl->ActiveTexture(GL_TEXTURE3);
-    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_tau_tex : r->sun_back_tex);
+    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_tau_tex : 0);
     gl->ActiveTexture(GL_TEXTURE0);
+    cu_slab_bind(r);
 
     int inside = camera_inside_hull(r, cam, znear);
     if (r->cloud.ke > 0) { /* zero density cannot change a pixel: skip the cloud passes */

@@ -6,6 +6,7 @@
 #include "noise.h"
 #include "phase.h"
 #include "scene.h"
+#include "slabmodel.h"
 #include "sky.h"
 #include "vecmath.h"
 
@@ -26,13 +27,17 @@ struct cu_renderer {
 
     GLuint noise_tex, phase_tex;
     GLuint sun_tex, sun_fbo;
-    GLuint sun_back_tex, sun_back_fbo; /* front method only, when a term needs the thickness along the sun */
     int shadow;                        /* the method in use (the scene's, or front when peel cannot run) */
     GLuint sun_layers_tex, sun_tau_tex, sun_opacity_fbo; /* peel: the opacity map, tiles of intervals */
     int sun_intervals;                 /* intervals present for the current sun direction */
-    int need_sun_back;
+    int ms_mode;                       /* the multiple-scattering mode in use (the scene's, or a fallback) */
+    cu_slab_model *slab_model;         /* the fitted slab tables (slab and collector modes) */
+    GLuint slab_tab_tex;               /* the tables as a texture (ms_slab.glsl) */
+    GLuint slab_a_tex[2], slab_n_tex[2], slab_fbo[2]; /* slab maps from the sun [0] and the zenith [1] */
+    int sky_slab_dirty;
+    vec3 sky_right, sky_up;            /* the zenith map's axes */
     double white[3];                   /* white balance of the tone mapper (sky.h) */
-    double phase_g_eff;                /* mean cosine of the phase function in use */
+
     double peak_f[3];                  /* weight of the chopped Mie peak per channel (0: analytic phase) */
     int sun_size;
     int sun_dirty;
@@ -41,7 +46,7 @@ struct cu_renderer {
     GLuint hull_vbo, hull_ibo, inst_vbo, hull_vao, empty_vao;
     int hull_indices;
 
-    GLuint prog_sun, prog_sun_back, prog_sun_opacity, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
+    GLuint prog_sun, prog_sun_opacity, prog_slab_map, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
 
     GLuint hdr_fbo, hdr_tex, hdr_depth;
     int hdr_w, hdr_h;
@@ -49,4 +54,6 @@ struct cu_renderer {
 };
 
 void cu_log(const cu_renderer *r, cu_log_level level, const char *fmt, ...);
+/* Uniforms of density.glsl (ellipsoids, extinction, boundary, noise on texture unit 0). */
+void cu_set_density_uniforms(cu_renderer *r, GLuint p);
 #endif

@@ -28,7 +28,7 @@ typedef struct key_def {
 
 static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
 static const char *const profile_names[] = {"tapered", "kol", NULL};
-static const char *const ms_names[] = {"none", "octaves", "diffusion", NULL};
+static const char *const ms_names[] = {"none", "octaves", "slab", "collector", NULL};
 static const char *const sky_names[] = {"preetham", "constant", NULL};
 static const char *const shadow_names[] = {"peel", "front", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
@@ -77,6 +77,7 @@ static const key_def keys[] = {
     {"ms", "b", K_DOUBLE, 1, S(ms_b), 0, 1, 0, NULL, ""},
     {"ms", "c", K_DOUBLE, 1, S(ms_c), 0, 1, 0, NULL, ""},
     {"ms", "sky_light", K_ENUM, 1, S(sky_light), 0, 0, 0, bool_names, ""},
+    {"ms", "blur", K_DOUBLE, 1, S(ms_blur_m), 0, 1e6, 1, NULL, "m"},
 };
 #undef S
 #undef E
@@ -113,7 +114,8 @@ void cu_scene_defaults(cu_scene *s)
     s->sun_intervals = 3;
     s->sun_samples = 32;
     s->sun_filter = 1;
-    s->ms_mode = CU_MS_DIFFUSION;
+    s->ms_mode = CU_MS_SLAB;
+    s->ms_blur_m = 200;
     s->ms_octaves = 4;
     s->ms_a = 0.5;
     s->ms_b = 0.5;

@@ -13,7 +13,7 @@ typedef struct cu_ellipsoid {
 
 typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MIE } cu_phase_model;
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
-typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_DIFFUSION } cu_ms_mode;
+typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_SLAB, CU_MS_COLLECTOR } cu_ms_mode;
 typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
 typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT } cu_shadow_method;
 
@@ -64,6 +64,7 @@ struct cu_scene {
     int ms_octaves;
     double ms_a, ms_b, ms_c;  /* Wrenninge: extinction, scattering and anisotropy factors per octave */
     int sky_light;            /* the isotropic sky-and-ground light term, 0/1 */
+    double ms_blur_m;         /* slab model: width of the box the slab maps are averaged over (Kol: a fixed LOD) */
 };
 
 void cu_scene_defaults(cu_scene *s);

@@ -113,7 +113,9 @@ void cu_sky_compute(cu_sky *sky, const cu_scene *s)
         sky->sky_irradiance[c] = E[c];
         sky->ground[c] = s->ground_albedo / CU_PI * (sky->sun_irradiance[c] * mu_s + E[c]);
         /* half the sphere is sky (M / 2 pi is its mean radiance), half is ground; a constant sky is everywhere */
-        sky->ambient[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : 0.5 * (M[c] / (2 * CU_PI) + sky->ground[c]);
+        sky->sky_mean[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : M[c] / (2 * CU_PI);
+        sky->ground_mean[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : sky->ground[c];
+        sky->ambient[c] = 0.5 * (sky->sky_mean[c] + sky->ground_mean[c]);
     }
 }
 

@@ -13,6 +13,8 @@ typedef struct cu_sky {
     double norm[3];             /* F(0, theta_s) for Y, x, y */
     double ground[3];           /* radiance of the Lambertian ground */
     double sky_irradiance[3];   /* sky irradiance on a horizontal plane */
+    double sky_mean[3];         /* mean radiance of the upper hemisphere of the environment */
+    double ground_mean[3];      /* mean radiance of the lower hemisphere (the ground; the sky colour if constant) */
     double ambient[3];          /* mean radiance of the environment (sky and ground) over the whole sphere */
 } cu_sky;
 

@@ -53,7 +53,7 @@ static const knob KNOBS[] = {
     {"light.shadow", 0, 2, {"peel", "front"}, {0}},
     {"light.sun_intervals", 2, 3, {"1", "2", "3"}, {0}},
     {"light.sun_samples", 2, 4, {"8", "16", "32", "64"}, {0}},
-    {"ms.mode", 2, 3, {"none", "octaves", "diffusion"}, {1, 0, 1}},
+    {"ms.mode", 2, 3, {"none", "octaves", "slab"}, {1, 0, 1}},
     {"ms.sky_light", 1, 2, {"off", "on"}, {0}},
     {"quality.integration", 0, 2, {"exponential", "kol"}, {0}},
     {"cloud.phase", 0, 3, {"mie", "hg", "cornette-shanks"}, {0}},

@@ -1,0 +1,320 @@
+/* src/slabmodel.c: the fitted slab multiple-scattering tables (eq. 3.32): strict loader, CPU evaluation (the twin
+ * of shaders_gles/ms_slab.glsl) and texture packing. */
+#include "slabmodel.h"
+#include "vecmath.h"
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const group_names[CU_SLAB_GROUPS] = {"1", "2", "3", "4", "5-6", "7-9", "10-15", "16+"};
+/* the lowest scattering order of each group: a thin slab's group n scales like tau^n */
+static const int group_min_order[CU_SLAB_GROUPS] = {1, 2, 3, 4, 5, 7, 10, 16};
+
+enum { F_P, F_A1, F_B1, F_C, F_D, F_A2, F_B2, F_COUNT };
+static const char *const field_names[F_COUNT] = {"P", "A1", "B1", "C", "D", "A2", "B2"};
+static const char *const node_keys[F_COUNT] = {"Theta", "thetaV", "thetaV", "thetaV", "thetaV", "thetaL", "thetaL"};
+
+static int lfail(cu_error *err, const char *path, int line, const char *fmt, const char *a)
+{
+    char what[200];
+    snprintf(what, sizeof what, fmt, a);
+    snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, line, what);
+    return 1;
+}
+
+/* Index of x in the ascending node list, appending it when new; -1 when the list is full. */
+static int node_index(double *nodes, int *n, int max, double x)
+{
+    for (int i = 0; i < *n; i++)
+        if (fabs(nodes[i] - x) < 1e-9 * fmax(1.0, fabs(x)))
+            return i;
+    if (*n == max)
+        return -1;
+    nodes[(*n)++] = x;
+    return *n - 1;
+}
+
+static int ascending(const double *v, int n)
+{
+    for (int i = 1; i < n; i++)
+        if (!(v[i] > v[i - 1]))
+            return 0;
+    return 1;
+}
+
+static int parse_double(const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    return end != s && *end == 0 && errno != ERANGE && isfinite(*v);
+}
+
+/* Storage for one parsed value: which field, group, thickness node and angle node. */
+typedef struct { int field, group, it, in; double value; int line; } entry;
+
+int cu_slab_model_load(cu_slab_model *m, const char *path, cu_error *err)
+{
+    memset(m, 0, sizeof *m);
+    FILE *fp = fopen(path, "r");
+    if (!fp) {
+        snprintf(err->msg, sizeof err->msg, "%s: cannot open the slab model table: %s (tools/slab/gen_tables.sh "
+                 "makes it)", path, strerror(errno));
+        return 1;
+    }
+    size_t cap = 4096, n = 0;
+    entry *e = malloc(cap * sizeof *e);
+    char line[512];
+    int ln = 0, rc = 1;
+    unsigned char (*seen)[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_V] = NULL; /* each value exactly once */
+    /* node grids are collected in file order, then checked ascending */
+    int nn[F_COUNT] = {0};
+    double nodes[F_COUNT][CU_SLAB_MAX_V];
+    while (e && fgets(line, sizeof line, fp)) {
+        ln++;
+        if (!strchr(line, '\n') && !feof(fp)) {
+            lfail(err, path, ln, "line longer than %s characters", "510");
+            goto out;
+        }
+        if (memchr(line, 0, strlen(line) + 1) != line + strlen(line)) {
+            lfail(err, path, ln, "%s", "NUL byte");
+            goto out;
+        }
+        char name[32], group[32], tstr[64], node[64], val[64], extra[8];
+        int k = sscanf(line, "%31s %31s %63s %63s %63s %7s", name, group, tstr, node, val, extra);
+        if (k <= 0 || name[0] == '#')
+            continue;
+        if (k != 5) {
+            lfail(err, path, ln, "expected 'name group t_m node value', got %s fields", k > 5 ? "more" : "fewer");
+            goto out;
+        }
+        entry x = {.line = ln, .field = -1, .group = -1};
+        for (int f = 0; f < F_COUNT; f++)
+            if (!strcmp(name, field_names[f]))
+                x.field = f;
+        if (x.field < 0) {
+            lfail(err, path, ln, "field 'name': unknown function '%s' (P, A1, B1, C, D, A2, B2)", name);
+            goto out;
+        }
+        for (int g = 0; g < CU_SLAB_GROUPS; g++)
+            if (!strcmp(group, group_names[g]))
+                x.group = g;
+        if (x.group < 0) {
+            lfail(err, path, ln, "field 'group': unknown group '%s' (1 2 3 4 5-6 7-9 10-15 16+)", group);
+            goto out;
+        }
+        double t;
+        if (!parse_double(tstr, &t) || t <= 0) {
+            lfail(err, path, ln, "field 't_m': '%s' is not a positive number", tstr);
+            goto out;
+        }
+        x.it = node_index(m->t, &m->nt, CU_SLAB_MAX_T, t);
+        if (x.it < 0) {
+            lfail(err, path, ln, "field 't_m': more than %s thickness nodes", "16");
+            goto out;
+        }
+        const char *key = node_keys[x.field];
+        size_t kl = strlen(key);
+        double a;
+        if (strncmp(node, key, kl) || node[kl] != '=' || !parse_double(node + kl + 1, &a) || a < 0 || a > 180) {
+            lfail(err, path, ln, "field 'node': expected %s=<degrees in [0, 180]>", key);
+            goto out;
+        }
+        int max = x.field == F_P ? CU_SLAB_MAX_P : x.field >= F_A2 ? CU_SLAB_MAX_L : CU_SLAB_MAX_V;
+        int slot = x.field == F_P ? 0 : x.field >= F_A2 ? 2 : 1;
+        x.in = node_index(nodes[slot], &nn[slot], max, a);
+        if (x.in < 0) {
+            lfail(err, path, ln, "field 'node': too many %s nodes", key);
+            goto out;
+        }
+        if (!parse_double(val, &x.value)) {
+            lfail(err, path, ln, "field 'value': '%s' is not a finite number", val);
+            goto out;
+        }
+        /* the model takes logarithms of P, A1, A2 (and exponentiates C, D in the fit): they must be positive */
+        int positive = x.field != F_B1 && x.field != F_B2;
+        if (positive && !(x.value > 0)) {
+            lfail(err, path, ln, "field 'value': %s must be positive", name);
+            goto out;
+        }
+        if (n == cap) {
+            entry *ne = realloc(e, 2 * cap * sizeof *e);
+            if (!ne)
+                break;
+            e = ne;
+            cap *= 2;
+        }
+        e[n++] = x;
+    }
+    if (!e) {
+        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        goto out;
+    }
+    m->np = nn[0];
+    m->nv = nn[1];
+    m->nl = nn[2];
+    memcpy(m->th, nodes[0], sizeof(double) * (size_t)m->np);
+    memcpy(m->thv, nodes[1], sizeof(double) * (size_t)m->nv);
+    memcpy(m->thl, nodes[2], sizeof(double) * (size_t)m->nl);
+    if (m->nt < 1 || m->np < 2 || m->nv < 2 || m->nl < 1) {
+        snprintf(err->msg, sizeof err->msg, "%s:%d: table incomplete: %d thickness, %d Theta, %d thetaV, %d thetaL "
+                 "nodes", path, ln, m->nt, m->np, m->nv, m->nl);
+        goto out;
+    }
+    if (!ascending(m->t, m->nt) || !ascending(m->th, m->np) || !ascending(m->thv, m->nv) ||
+        !ascending(m->thl, m->nl)) {
+        snprintf(err->msg, sizeof err->msg, "%s: node grids must be listed in ascending order (thickness and each "
+                 "angle)", path);
+        goto out;
+    }
+    /* every value exactly once */
+    seen = calloc(1, sizeof *seen * F_COUNT);
+    if (!seen) {
+        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        goto out;
+    }
+    for (size_t i = 0; i < n; i++) {
+        entry *x = &e[i];
+        if (seen[x->field][x->group][x->it][x->in]++) {
+            lfail(err, path, x->line, "duplicate entry for %s", field_names[x->field]);
+            goto out;
+        }
+        double *dst = NULL;
+        switch (x->field) {
+        case F_P: dst = &m->p[x->group][x->it][x->in]; break;
+        case F_A1: dst = &m->a1[x->group][x->it][x->in]; break;
+        case F_B1: dst = &m->b1[x->group][x->it][x->in]; break;
+        case F_C: dst = &m->c[x->group][x->it][x->in]; break;
+        case F_D: dst = &m->d[x->group][x->it][x->in]; break;
+        case F_A2: dst = &m->a2[x->group][x->it][x->in]; break;
+        default: dst = &m->b2[x->group][x->it][x->in]; break;
+        }
+        *dst = x->value;
+    }
+    for (int f = 0; f < F_COUNT; f++) {
+        int cnt = f == F_P ? m->np : f >= F_A2 ? m->nl : m->nv;
+        for (int g = 0; g < CU_SLAB_GROUPS; g++)
+            for (int it = 0; it < m->nt; it++)
+                for (int in = 0; in < cnt; in++)
+                    if (!seen[f][g][it][in]) {
+                        char what[160];
+                        snprintf(what, sizeof what, "missing %s for group %s, t = %g m, node %d", field_names[f],
+                                 group_names[g], m->t[it], in);
+                        snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, ln, what);
+                        goto out;
+                    }
+    }
+    rc = 0;
+out:
+    free(seen);
+    free(e);
+    fclose(fp);
+    return rc;
+}
+
+/* Bracketing node and weight of x on an ascending grid, clamped to its ends. */
+static int bracket(const double *v, int n, double x, double *w)
+{
+    if (n == 1 || x <= v[0]) {
+        *w = 0;
+        return 0;
+    }
+    if (x >= v[n - 1]) {
+        *w = 1;
+        return n - 2;
+    }
+    int i = 0;
+    while (x > v[i + 1])
+        i++;
+    *w = (x - v[i]) / (v[i + 1] - v[i]);
+    return i;
+}
+
+/* Eq. 3.32 at one (thV, thL) node pair, without the cos thL factor. The guards are the fitter's (tools/slab). */
+static double node_value(const cu_slab_model *m, int g, int k, int iv, int il, double d, double p)
+{
+    double A = p * m->a1[g][k][iv] * m->a2[g][k][il];
+    double B = m->b1[g][k][iv] - m->b2[g][k][il];
+    double Cs = m->c[g][k][iv], D = m->d[g][k][iv];
+    double num = log(d + D), den = log(fmax(B + D, 1e-9));
+    den = fmax(den * den, 1e-8);
+    return A * num * num / den * exp(-(d - B) * (d - B) / fmax(2 * Cs * Cs, 1e-12));
+}
+
+/* One group at thickness node k, depth d (m, at that node's thickness). */
+static double group_at_node(const cu_slab_model *m, int g, int k, double d, double thv, double thl, double theta)
+{
+    double wp, wv, wl;
+    int ip = bracket(m->th, m->np, theta, &wp);
+    /* P* log-linear between its nodes (as the fitter interpolates it) */
+    double p = exp((1 - wp) * log(m->p[g][k][ip]) + wp * log(m->p[g][k][ip + 1]));
+    int iv = bracket(m->thv, m->nv, thv, &wv);
+    int il = bracket(m->thl, m->nl, thl, &wl);
+    int il1 = m->nl > 1 ? il + 1 : il;
+    double v00 = node_value(m, g, k, iv, il, d, p), v10 = node_value(m, g, k, iv + 1, il, d, p);
+    double v01 = node_value(m, g, k, iv, il1, d, p), v11 = node_value(m, g, k, iv + 1, il1, d, p);
+    return (1 - wl) * ((1 - wv) * v00 + wv * v10) + wl * ((1 - wv) * v01 + wv * v11);
+}
+
+double cu_slab_model_eval(const cu_slab_model *m, int first_group, double t, double d, double thv, double thl,
+                          double theta)
+{
+    if (!(t > 0))
+        return 0;
+    d = fmin(fmax(d, 0.0), t);
+    double rel = d / t, sum = 0;
+    double cos_l = cos(fmin(fmax(thl, 0.0), 90.0) * CU_PI / 180.0);
+    for (int g = first_group; g < CU_SLAB_GROUPS; g++) {
+        double c;
+        double t0 = m->t[0], t1 = m->t[m->nt - 1];
+        if (t <= t0) {
+            /* thinner than the tables: group n grows like tau^n from the thinnest node (same relative depth) */
+            c = group_at_node(m, g, 0, rel * t0, thv, thl, theta) * pow(t / t0, group_min_order[g]);
+        } else if (t >= t1) {
+            /* thicker: the thickest node at the same relative depth; the diffuse field of a thick slab falls
+             * linearly with depth, so the transmitted side scales like t1 / t (diffusion: T ~ 1 / t) */
+            c = group_at_node(m, g, m->nt - 1, rel * t1, thv, thl, theta) * ((1 - rel) + rel * t1 / t);
+        } else {
+            double w;
+            int k = bracket(m->t, m->nt, t, &w);
+            w = log(t / m->t[k]) / log(m->t[k + 1] / m->t[k]); /* linear in log thickness */
+            c = (1 - w) * group_at_node(m, g, k, rel * m->t[k], thv, thl, theta) +
+                w * group_at_node(m, g, k + 1, rel * m->t[k + 1], thv, thl, theta);
+        }
+        sum += c;
+    }
+    return sum * cos_l;
+}
+
+int cu_slab_model_tex_width(const cu_slab_model *m)
+{
+    return m->nv + m->nl + m->np;
+}
+
+int cu_slab_model_tex_height(const cu_slab_model *m)
+{
+    return (CU_SLAB_GROUPS - 1) * m->nt;
+}
+
+void cu_slab_model_pack(const cu_slab_model *m, float *rgba)
+{
+    int w = cu_slab_model_tex_width(m);
+    for (int g = 1; g < CU_SLAB_GROUPS; g++)
+        for (int k = 0; k < m->nt; k++) {
+            float *row = rgba + 4 * (size_t)w * (size_t)((g - 1) * m->nt + k);
+            memset(row, 0, sizeof(float) * 4 * (size_t)w);
+            for (int i = 0; i < m->nv; i++) {
+                row[4 * i + 0] = (float)m->a1[g][k][i];
+                row[4 * i + 1] = (float)m->b1[g][k][i];
+                row[4 * i + 2] = (float)m->c[g][k][i];
+                row[4 * i + 3] = (float)m->d[g][k][i];
+            }
+            for (int i = 0; i < m->nl; i++) {
+                row[4 * (m->nv + i) + 0] = (float)m->a2[g][k][i];
+                row[4 * (m->nv + i) + 1] = (float)m->b2[g][k][i];
+            }
+            for (int i = 0; i < m->np; i++)
+                row[4 * (m->nv + m->nl + i)] = (float)m->p[g][k][i];
+        }
+}
