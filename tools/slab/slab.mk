@@ -20,7 +20,12 @@ $(B)/test_slab: $(SLAB_OBJ)/test_slab.o $(SLAB_OBJ)/slab.o $(SLAB_OBJ)/fitlib.o
 	@mkdir -p $(dir $@)
 	$(CC) $(SLAB_CFLAGS) $^ -o $@ $(call pc_libs,cmocka) $(SLAB_LIBS)
 
-ALL_BINS += $(B)/cumulo-slab $(B)/cumulo-slab-fit
+# finite-cloud side study (README, "R and T vs thickness"): a sphere lit from the zenith
+$(B)/cumulo-slab-sphere: $(SLAB_OBJ)/sphere.o $(SLAB_OBJ)/slab.o
+	@mkdir -p $(dir $@)
+	$(CC) $(SLAB_CFLAGS) $^ -o $@ $(SLAB_LIBS)
+
+ALL_BINS += $(B)/cumulo-slab $(B)/cumulo-slab-fit $(B)/cumulo-slab-sphere
 CHECK_TESTS += $(B)/test_slab $(SLAB_DIR)/test_slab_cli.sh
 
 # Optional MPI build of the same source: only when mpicc exists (Open MPI's dev package is not installed here).
@@ -35,3 +40,10 @@ $(B)/cumulo-slab-mpi: $(SLAB_OBJ)/mpi/main.o $(SLAB_OBJ)/mpi/slab.o
 
 ALL_BINS += $(B)/cumulo-slab-mpi
 endif
+
+# make stress: the long slab tests (T to 0.5 % for thick slabs; ~1-2 min on 2 cores). A prerequisite-only rule, so the
+# stress recipe in tests/tests.mk is not overridden.
+stress: slab-stress
+slab-stress: $(B)/test_slab
+	$(TEST_ENV) B=$(B) sh tests/run_tests.sh $(SLAB_DIR)/test_slab_stress.sh
+.PHONY: slab-stress
