@@ -6,6 +6,8 @@ TAB=${1:-build/slab_tables/C_t00400_L30.txt}
 FIT=${FIT:-data/slab_fit_bouthors.txt}
 mkdir -p docs build/slab_plots
 W=build/slab_plots
+ph=$(sed -n 1p data/slab_RT_vs_thickness.txt | sed -n 's/.*--phase \([^ ]*\).*/\1/p')
+case "$ph" in mie:*) ph="chopped Mie (${ph#mie:})" ;; hg:*) ph="HG g = ${ph#hg:}" ;; esac
 gnuplot <<GP
 set terminal pngcairo size 900,600 font "sans,11"
 set output "docs/slab_RT_vs_thickness.png"
@@ -14,12 +16,32 @@ set xlabel "slab thickness t (m), k_e = 0.0905 m^{-1}"
 set ylabel "flux fraction"
 set key center right
 set grid
-set title "Non-absorbing slab, HG g = 0.85: reflectance R and transmittance T (incl. unscattered), MC +- 1 SE"
+set title "Non-absorbing slab, $ph: reflectance R and transmittance T (incl. unscattered), MC +- 1 SE" noenhanced
 plot "data/slab_RT_vs_thickness.txt" u (\$2==1?\$1:1/0):3:4 w yerrorlines lw 2 t "R, {/Symbol m}_0 = 1", \
      "" u (\$2==1?\$1:1/0):5:6 w yerrorlines lw 2 t "T, {/Symbol m}_0 = 1", \
      "" u (\$2==0.5?\$1:1/0):3:4 w yerrorlines lw 2 dt 2 t "R, {/Symbol m}_0 = 0.5", \
      "" u (\$2==0.5?\$1:1/0):5:6 w yerrorlines lw 2 dt 2 t "T, {/Symbol m}_0 = 0.5"
 GP
+# Bouthors' "thicker than ~500 m reflects more than it transmits": slab R vs a finite cloud (sphere, sun at zenith)
+if [ -f data/slab_sphere_updown.txt ]; then
+gnuplot <<GP
+set terminal pngcairo size 900,600 font "sans,11"
+set output "docs/slab_sphere_updown.png"
+set logscale x
+set xlabel "slab thickness / sphere diameter (m)"
+set ylabel "fraction of the intercepted sunlight"
+set key bottom right
+set grid
+set yrange [0:1]
+set title "Sun at zenith, $ph: light leaving upwards (slab: R) vs thickness" noenhanced
+plot "data/slab_RT_vs_thickness.txt" u (\$2==1?\$1:1/0):3:4 w yerrorlines lw 2 t "slab R, k_e = 0.0905 m^{-1}", \
+     "data/slab_sphere_updown.txt" u (\$1==0.0905?\$2:1/0):6:7 w yerrorlines lw 2 t "sphere, leaving upwards, k_e = 0.0905", \
+     "" u (\$1==0.0692?\$2:1/0):6:7 w yerrorlines lw 2 t "sphere, leaving upwards, k_e = 0.0692 (Mie {/Symbol s}_{ext})", \
+     "" u (\$1==0.0905?\$2:1/0):3:4 w yerrorlines lw 1 dt 2 t "sphere, leaving through the upper hemisphere, k_e = 0.0905", \
+     0.5 w l lc rgb "black" dt 3 t ""
+GP
+echo "wrote docs/slab_sphere_updown.png"
+fi
 # per-group C vs depth for light going down (thetaV = 0) and up (thetaV = 180), phiV = 0
 for g in 1 2 3 4 5 6 7 8; do
   awk -v g=$g '$1==g && $4==0 && $5==0 {print $3, $7, $8}' "$TAB" >"$W/down_$g.txt"
