@@ -162,24 +162,31 @@ void main()
         intervals++;
         float tau0 = tau, taup0 = taup;
         // Segments in geometric progression, shortest at the entry (DESIGN: Kol's eq. 3.23 is garbled).
-        int nseg = SEGMENTS * merged;
-        float len = b - a;
-        float r = u_seg_ratio;
-        float rn = r > 1.0001 ? pow(r, float(nseg)) - 1.0 : 0.0;
-        float seg = r > 1.0001 ? len * (r - 1.0) / rn : len / float(nseg);
         // The end samples sit a hair inside the interval (Kol 3.4.4 offsets the entry point too): exactly on the
         // surface d = 0 and a thin boundary (h -> 0) would make the step from air to core invisible to the
         // trapezoids; just inside, they see the one-sided limit. Segment lengths stay those of [a, b].
+        float len = b - a;
         float nudge = min(1e-3 * len, 0.05);
+        // The boundary ramps (density 0 -> k_e over h) get a segment of their own at both ends (ramp_length in
+        // density.glsl): a trapezoid across the whole ramp is exact for the symmetric sigmoid, where a long segment
+        // from the surface into the core would take it for a linear rise over the segment (-24% tau at h = 1 m).
+        float rl = ramp_length(len, nudge);
+        int nseg = SEGMENTS * merged;
+        float core = len - 2.0 * rl;
+        float r = u_seg_ratio;
+        float rn = r > 1.0001 ? pow(r, float(nseg)) - 1.0 : 0.0;
+        float seg = r > 1.0001 ? core * (r - 1.0) / rn : core / float(nseg);
         float t = a;
         vec3 p = ro + dir * (t + nudge);
         vec3 p_entry = p;     // Kol's "multiple scattering point": the interval's entry, a hair inside
         float ke_prev = extinction(p, t + nudge);
         vec3 S_prev = source(p, ke_prev, ph0);
-        for (int i = 0; i < nseg; i++) {
-            float x = (i == nseg - 1) ? (b - t) : seg;
+        for (int i = rl > 0.0 ? -1 : 0; i < nseg + (rl > 0.0 ? 1 : 0); i++) {
+            // i = -1 and nseg: the ramps; 0 .. nseg-1: the core, the last core segment ends at b - rl
+            bool last = i == nseg - (rl > 0.0 ? 0 : 1);
+            float x = i < 0 ? rl : last ? b - t : (i == nseg - 1 ? b - rl - t : seg);
             t += x;
-            float ts_at = (i == nseg - 1) ? t - nudge : t;
+            float ts_at = last ? t - nudge : t;
             p = ro + dir * ts_at;
             float ke = extinction(p, ts_at);
             float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
@@ -198,7 +205,8 @@ void main()
             taup += DM_SCALE * dtau;
             ke_prev = ke;
             S_prev = S;
-            seg *= r;
+            if (i >= 0)
+                seg *= r;
         }
 #if MS_MODE >= 2
         // The interval's multiple scattering, evaluated once at its entry and blended with its opacity (Kol 3.4.4).

@@ -125,7 +125,7 @@ bool fit_slab(sampler2D A, sampler2D N, vec3 ldir, vec3 right, vec3 up, float R,
     vec4 a = textureLod(A, uv, lod);
     if (a.x < 1e-3)
         return false;
-    float zm = a.y / a.x * 4.0 * R, chord = a.z / a.x * 4.0 * R, tau = a.w / a.x;
+    float hm = a.y / a.x * R, chord = a.z / a.x * R, tau = a.w / a.x; // entry height along ldir, length, tau
     vec3 nn = textureLod(N, uv, lod).xyz;
     n = dot(nn, nn) > 1e-12 ? normalize(nn) : ldir;
     // The blurred normal faces the light where the cloud is convex; never let the slab face away from it.
@@ -134,8 +134,7 @@ bool fit_slab(sampler2D A, sampler2D N, vec3 ldir, vec3 right, vec3 up, float R,
     // thL. The slab thickness is the in-cloud length cos thL, so the light crosses the slab along the mean chord. Both
     // scaled to the tables' extinction by the mean extinction along the chords (tau / chord).
     float scale = tau / max(chord, 1e-6) / SLAB_KE_REF;
-    float z = 2.0 * R - dot(p, ldir);
     t = chord * cos_l * scale;
-    d = max(z - zm, 0.0) * cos_l * scale;
+    d = max(hm - dot(p, ldir), 0.0) * cos_l * scale;
     return true;
 }

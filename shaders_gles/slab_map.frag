@@ -1,13 +1,17 @@
 #version 300 es
 // shaders_gles/slab_map.frag: the slab map for the multiple-scattering model (Kol 3.1.4 "Fitting a plane-parallel
 // slab to an arbitrary cloud", 3.4.5). One texel per parallel ray from the light (the sun, or the zenith for sky
-// light): target 0 = (coverage, first-entry depth / 4R, in-cloud length / 4R, optical depth through every interval),
+// light): target 0 = (coverage, height of the first entry along the light direction / R, in-cloud length / R, optical
+// depth through every interval),
 // target 1 = the hull normal where the ray first enters. Coverage-weighted, so the mip chain (glGenerateMipmap)
 // holds Gaussian-ish averages over the collector area: depth = x / coverage, and the mean normal's direction is the
 // normal (coverage cancels). The thickness is the length inside the union's intervals, not back minus front depth,
-// and the optical depth integrates the real density (noise included) with SLAB_SAMPLES trapezoids per interval.
-// RGBA16F: lengths are fractions of 4R (no fp16 overflow for 50 km clouds) and tau is capped at 1e4, where the
-// slab model saturates anyway.
+// and the optical depth integrates the real density (noise included) with SLAB_SAMPLES trapezoids per interval
+// (integrate_interval in density.glsl).
+// RGBA16F: lengths are fractions of R (no fp16 overflow for 50 km clouds), and the entry is stored as its height
+// above the cloud's centre along the light, not as a depth from the map plane at 2R: fp16 keeps 11 bits, which on a
+// depth near 2R is 1/2000 of the map (29 m for a 60 km slab), while heights keep that precision relative to the
+// cloud's own extent. tau is capped at 1e4, where the slab model saturates anyway.
 #include "density.glsl"
 uniform vec3 u_map_dir, u_map_right, u_map_up; // toward the light, and the map's axes
 uniform float u_map_R;                          // the map covers [-R, R]^2, its plane is 2R along u_map_dir
@@ -35,17 +39,10 @@ void main()
     while (k < n_hits) {
         k = next_interval(k, a, b, merged);
         len += b - a;
-        float x = (b - a) / float(SLAB_SAMPLES);
-        float nudge = min(1e-3 * (b - a), 0.05);
-        float ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
-        for (int i = 1; i <= SLAB_SAMPLES; i++) {
-            float t = (i == SLAB_SAMPLES) ? b - nudge : a + x * float(i);
-            float ke = extinction(ro + dir * t, t);
-            tau += x * 0.5 * (ke_prev + ke);
-            ke_prev = ke;
-        }
+        vec4 q;
+        tau += integrate_interval(ro, dir, a, b, SLAB_SAMPLES, q);
     }
-    float s = 1.0 / (4.0 * u_map_R);
-    o_slab = vec4(1.0, hit_t0[0] * s, len * s, min(tau, 1e4));
+    float s = 1.0 / u_map_R;
+    o_slab = vec4(1.0, dot(ro + dir * hit_t0[0], u_map_dir) * s, len * s, min(tau, 1e4));
     o_normal = vec4(n, 0.0);
 }

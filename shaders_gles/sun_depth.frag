@@ -15,13 +15,14 @@ void main()
     vec3 d = -u_sun_dir;
     vec3 ir = u_ell_ir[v_inst].xyz;
     vec3 q = (o - u_ell_c[v_inst].xyz) * ir, ds = d * ir;
-    float A = dot(ds, ds), B = 2.0 * dot(q, ds), C = dot(q, q) - 1.0;
-    float disc = B * B - 4.0 * A * C;
-    if (disc < 0.0)
+    // closest-approach form, as cast_ray in density.glsl (no cancellation for thin ellipsoids far from the plane)
+    float A = dot(ds, ds);
+    float tc = -dot(q, ds) / A;
+    vec3 qc = q + tc * ds;
+    float h2 = 1.0 - dot(qc, qc);
+    if (h2 < 0.0)
         discard; // the hull is larger than the ellipsoid: its rim misses
-    float s = sqrt(disc);
-    float qq = -0.5 * (B + (B >= 0.0 ? s : -s));
-    float t0 = min(qq / A, C / qq);
+    float t0 = tc - sqrt(h2 / A);
     gl_FragDepth = clamp(t0 / (4.0 * u_sun_R), 0.0, 1.0);
     o_color = vec4(0.0);
 }

@@ -4,7 +4,8 @@
 // depth peel would find, but exact: the ellipsoids are analytic, so no hull rasterisation, no polygonal depths and no
 // peel passes are needed), and the real density, noise included, is integrated through interval j = the tile this
 // fragment lies in. Output: target 0 (z_entry, z_exit) in metres from the sun plane; target 1: tau at 1/4, 1/2, 3/4
-// and 1 of the interval. SUN_SAMPLES (a multiple of 4) uniform trapezoid segments per interval.
+// and 1 of the interval. SUN_SAMPLES trapezoid segments over the interval's core, one per boundary ramp
+// (integrate_interval in density.glsl).
 #include "density.glsl"
 uniform vec3 u_sun_dir, u_sun_right, u_sun_up;
 uniform float u_sun_R;
@@ -31,23 +32,8 @@ void main()
         }
         k = next_interval(k, a, b, merged);
     }
-    // the end samples a hair inside, as in cloud.frag, so a boundary h -> 0 still sees the core
-    float len = b - a;
-    float nudge = min(1e-3 * len, 0.05);
-    float x = len / float(SUN_SAMPLES);
-    float ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
-    float tau = 0.0;
-    vec4 q = vec4(0.0);
-    for (int i = 1; i <= SUN_SAMPLES; i++) {
-        float t = (i == SUN_SAMPLES) ? b - nudge : a + x * float(i);
-        float ke = extinction(ro + dir * t, t);
-        tau += x * 0.5 * (ke_prev + ke);
-        ke_prev = ke;
-        if (i == SUN_SAMPLES / 4) q.x = tau;
-        if (i == SUN_SAMPLES / 2) q.y = tau;
-        if (i == 3 * SUN_SAMPLES / 4) q.z = tau;
-    }
-    q.w = tau;
+    vec4 q;
+    integrate_interval(ro, dir, a, b, SUN_SAMPLES, q);
     o_layers = vec4(a, b, 0.0, 0.0);
     o_tau = q;
 }
