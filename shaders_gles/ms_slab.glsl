@@ -53,23 +53,26 @@ int bracket_t(float x, out float w)
     return i;
 }
 
-float slab_node(int row, int iv, int il, float d, float p)
+// Eq. 3.32 at one node pair without cos thL, in log space (slabmodel.c: node_value), capped by the fit's bound.
+float slab_node(int row, int iv, int il, float d, float log_p, float log_bound)
 {
-    vec4 v = texelFetch(u_slab_tab, ivec2(iv, row), 0);            // A1 B1 C D
-    vec2 l = texelFetch(u_slab_tab, ivec2(SLAB_NV + il, row), 0).xy; // A2 B2
-    float A = p * v.x * l.x;
+    vec4 v = texelFetch(u_slab_tab, ivec2(iv, row), 0);            // log A1, B1, C, D
+    vec3 l = texelFetch(u_slab_tab, ivec2(SLAB_NV + il, row), 0).xyz; // log A2, B2, energy scaling kappa
     float B = v.y - l.y;
     float num = log(d + v.w), den = log(max(B + v.w, 1e-9));
     den = max(den * den, 1e-8);   // eq. 3.32 is singular where B* + D* = 1 (the fitter's guard)
-    return A * num * num / den * exp(-(d - B) * (d - B) / max(2.0 * v.z * v.z, 1e-12));
+    float lc = log_p + v.x + l.x + log(max(num * num, 1e-30)) - log(den) - (d - B) * (d - B) / max(2.0 * v.z * v.z, 1e-12);
+    return exp(min(lc, log_bound)) * l.z;
 }
 
 float slab_group_at(int row, float d, int ip, float wp, int iv, float wv, int il, int il1, float wl)
 {
-    float p = exp(mix(log(texelFetch(u_slab_tab, ivec2(SLAB_NV + SLAB_NL + ip, row), 0).x),
-                      log(texelFetch(u_slab_tab, ivec2(SLAB_NV + SLAB_NL + ip + 1, row), 0).x), wp));
-    float v00 = slab_node(row, iv, il, d, p), v10 = slab_node(row, iv + 1, il, d, p);
-    float v01 = slab_node(row, iv, il1, d, p), v11 = slab_node(row, iv + 1, il1, d, p);
+    vec2 p0 = texelFetch(u_slab_tab, ivec2(SLAB_NV + SLAB_NL + ip, row), 0).xy;
+    float p1 = texelFetch(u_slab_tab, ivec2(SLAB_NV + SLAB_NL + ip + 1, row), 0).x;
+    float log_bound = texelFetch(u_slab_tab, ivec2(SLAB_NV + SLAB_NL, row), 0).y;
+    float lp = mix(p0.x, p1, wp);
+    float v00 = slab_node(row, iv, il, d, lp, log_bound), v10 = slab_node(row, iv + 1, il, d, lp, log_bound);
+    float v01 = slab_node(row, iv, il1, d, lp, log_bound), v11 = slab_node(row, iv + 1, il1, d, lp, log_bound);
     return mix(mix(v00, v10, wv), mix(v01, v11, wv), wl);
 }
 

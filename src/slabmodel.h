@@ -23,6 +23,8 @@ typedef struct cu_slab_model {
     double c[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_V], d[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_V];
     double a2[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_L], b2[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_L];
     double p[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_P];
+    double log_bound[CU_SLAB_GROUPS][CU_SLAB_MAX_T]; /* cap of each fit (slabmodel.c: bound_groups) */
+    double kappa[CU_SLAB_MAX_T][CU_SLAB_MAX_L];      /* energy scaling <= 1 (slabmodel.c: conserve_energy) */
 } cu_slab_model;
 
 /* Reads the table; every (name, group, thickness, node) must be present exactly once, on the same node grids for
@@ -38,7 +40,8 @@ double cu_slab_model_eval(const cu_slab_model *m, int first_group, double t, dou
                           double theta);
 
 /* The texture the shader reads: RGBA32F, width nv + nl + np, height (CU_SLAB_GROUPS - 1) * nt (groups 2..16+):
- * texel (iv, row) = (A1, B1, C, D), (nv + il, row) = (A2, B2, 0, 0), (nv + nl + ip, row) = (P, 0, 0, 0). */
+ * texel (iv, row) = (log A1, B1, C, D), (nv + il, row) = (log A2, B2, kappa, 0), (nv + nl + ip, row) = (log P, 0, 0, 0)
+ * and log_bound in the y of the first P texel. Logarithms: A1* reaches 5e53 (beyond fp32). */
 void cu_slab_model_pack(const cu_slab_model *m, float *rgba);
 int cu_slab_model_tex_width(const cu_slab_model *m);
 int cu_slab_model_tex_height(const cu_slab_model *m);

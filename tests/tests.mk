@@ -46,3 +46,9 @@ refs: $(B)/test_render
 .PHONY: refs
 
 CHECK_TESTS += tests/test_cli.sh
+
+$(B)/test_ms: tests/test_ms.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
+	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_ms.c tests/render_util.c $(HEADLESS_SRCS) \
+	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_ms
+CHECK_TESTS += tests/test_ms_slab.sh
