@@ -16,6 +16,9 @@
 #include "ms_slab.glsl"
 uniform sampler2D u_slab_a, u_slab_n;   // the slab map from the sun (slab_map.frag), mipmapped
 uniform float u_slab_lod;               // its level for the fixed blur ms.blur (metres -> texels -> log2)
+#if MS_MODE == 3
+#include "ms_collector.glsl"
+#endif
 #if SKY_SPLIT
 uniform sampler2D u_sky_a, u_sky_n;     // the same from the zenith, for sky and ground light
 uniform vec3 u_sky_right, u_sky_up;
@@ -93,10 +96,15 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 // scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it).
 float ms_slab(vec3 p, vec3 dir, float mu)
 {
-    float t, d;
+    float t, d, scale;
     vec3 n;
-    if (!fit_slab(u_slab_a, u_slab_n, u_sun_dir, u_sun_right, u_sun_up, u_sun_R, u_slab_lod, p, t, d, n))
+#if MS_MODE == 3
+    if (!collector_search(p, dir, t, d, n))
         return 0.0;
+#else
+    if (!fit_slab(u_slab_a, u_slab_n, u_sun_dir, u_sun_right, u_sun_up, u_sun_R, u_slab_lod, p, p, t, d, n, scale))
+        return 0.0;
+#endif
     float thv = 180.0 - degrees(acos(clamp(dot(-dir, n), -1.0, 1.0)));
     float thl = degrees(acos(clamp(dot(u_sun_dir, n), -1.0, 1.0)));
     // Kol 3.4.5: seen from below the fitted slab's normal a point at d = 0 would get no light at all (a protruding
@@ -111,9 +119,10 @@ float ms_slab(vec3 p, vec3 dir, float mu)
 // through the isotropic group): the 16+ response of the vertical slab to light from above and from below.
 float sky_share(vec3 p, vec3 dir)
 {
-    float t, d;
+    float t, d, scale;
     vec3 n;
-    if (!fit_slab(u_sky_a, u_sky_n, vec3(0.0, 1.0, 0.0), u_sky_right, u_sky_up, u_sun_R, u_slab_lod, p, t, d, n))
+    if (!fit_slab(u_sky_a, u_sky_n, vec3(0.0, 1.0, 0.0), u_sky_right, u_sky_up, u_sun_R, u_slab_lod, p, p, t, d, n,
+                  scale))
         return 0.5;
     float thv = 180.0 - degrees(acos(clamp(dot(-dir, n), -1.0, 1.0)));
     float top = slab_radiance(7, t, d, thv, 0.0, 90.0);

@@ -118,13 +118,14 @@ float slab_radiance(int g_first, float t, float d, float thv, float thl, float t
     return sum * cos(radians(clamp(thl, 0.0, 90.0)));
 }
 
-// A slab fitted around p from a mipmapped slab map seen from direction ldir (toward the light): thickness t and
-// depth d in table metres, the slab normal n. False where the map has no cloud.
-bool fit_slab(sampler2D A, sampler2D N, vec3 ldir, vec3 right, vec3 up, float R, float lod, vec3 p,
-              out float t, out float d, out vec3 n)
+// A slab fitted for viewpoint p from a mipmapped slab map seen from direction ldir (toward the light), sampled around
+// q (p itself, or the collector's centre) at level lod: thickness t and depth d in table metres, the slab normal n,
+// and scale = table metres per metre. False where the map has no cloud.
+bool fit_slab(sampler2D A, sampler2D N, vec3 ldir, vec3 right, vec3 up, float R, float lod, vec3 q, vec3 p,
+              out float t, out float d, out vec3 n, out float scale)
 {
-    t = 0.0; d = 0.0; n = ldir;
-    vec2 uv = vec2(dot(p, right), dot(p, up)) / R * 0.5 + 0.5;
+    t = 0.0; d = 0.0; n = ldir; scale = 1.0;
+    vec2 uv = vec2(dot(q, right), dot(q, up)) / R * 0.5 + 0.5;
     vec4 a = textureLod(A, uv, lod);
     if (a.x < 1e-3)
         return false;
@@ -136,7 +137,7 @@ bool fit_slab(sampler2D A, sampler2D N, vec3 ldir, vec3 right, vec3 up, float R,
     // Bouthors: m = the blurred first surface, d = (m - p).n (eq. 3.55), so d = (depth below m along the light) cos
     // thL. The slab thickness is the in-cloud length cos thL, so the light crosses the slab along the mean chord. Both
     // scaled to the tables' extinction by the mean extinction along the chords (tau / chord).
-    float scale = tau / max(chord, 1e-6) / SLAB_KE_REF;
+    scale = tau / max(chord, 1e-6) / SLAB_KE_REF;
     t = chord * cos_l * scale;
     d = max(hm - dot(p, ldir), 0.0) * cos_l * scale;
     return true;

@@ -1,6 +1,7 @@
 /* src/renderer.c: renderer lifetime, scene upload (shader variants for exactly the scene's features, textures,
  * hull meshes) and the frame: sun pass, sky pass, depth pre-pass, cloud pass (GL_EQUAL), tone map. */
 #include "renderer.h"
+#include "collector.h"
 #include "slabmap.h"
 #include "sunmap.h"
 #include <stdarg.h>
@@ -145,6 +146,9 @@ void cu_renderer_destroy(cu_renderer *r)
     if (r->noise_ready)
         cu_noise_destroy(&r->noise);
     free(r->slab_model);
+    if (r->collector)
+        cu_collector_free(r->collector);
+    free(r->collector);
     free(r);
 }
 
@@ -269,11 +273,12 @@ static int build_programs(cu_renderer *r, cu_error *err)
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
              "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
-             "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n",
+             "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n"
+             "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n",
              s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
              s->profile == CU_PROFILE_KOL, r->ms_mode, r->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, r->shadow == CU_SHADOW_PEEL, s->sun_intervals,
-             s->sun_filter, s->sun_samples, s->integration);
+             s->sun_filter, s->sun_samples, s->integration, r->shadow, s->osm_slices, s->fom_coefficients);
     if (n < 0 || cu_slab_defines(r, defs + n, sizeof defs - (size_t)n))
         return fail(err, "shader defines too long");
     char fs_defs[1500], hull_defs[1500], lin[1500];
@@ -282,8 +287,10 @@ static int build_programs(cu_renderer *r, cu_error *err)
     snprintf(lin, sizeof lin, "%s#define FULLSCREEN 1\n#define LINEAR_OUTPUT 1\n", defs);
     if (cu_slab_targets(r, fs_defs, err))
         return 1;
-    if (r->shadow == CU_SHADOW_PEEL) {
-        if (!(r->prog_sun_opacity = cu_gl_program(&r->gl, "fullscreen.vert", "sun_opacity.frag", fs_defs, err)))
+    if (r->shadow != CU_SHADOW_FRONT) { /* peel, osm, fom: analytic fullscreen passes over the map's tiles */
+        const char *fs = r->shadow == CU_SHADOW_OSM ? "sun_osm.frag"
+                         : r->shadow == CU_SHADOW_FOM ? "sun_fom.frag" : "sun_opacity.frag";
+        if (!(r->prog_sun_opacity = cu_gl_program(&r->gl, "fullscreen.vert", fs, fs_defs, err)))
             return 1;
     } else if (!(r->prog_sun = hull_program(r, "sun_depth.frag", hull_defs, err))) {
         return 1;
@@ -355,6 +362,28 @@ static int make_sun_map(cu_renderer *r, cu_error *err)
             return fail(err, "sun opacity map: framebuffer incomplete (0x%x)", st);
         return 0;
     }
+    if (r->shadow == CU_SHADOW_OSM || r->shadow == CU_SHADOW_FOM) {
+        /* One RGBA32F target: tile 0 starts with the ray's depth range, then slices (osm) or coefficients (fom). */
+        r->sun_map_tiles = r->shadow == CU_SHADOW_OSM ? 1 + r->scene.osm_slices / 4
+                                                      : 1 + r->scene.fom_coefficients / 2;
+        GLint most = 0;
+        gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &most);
+        if (r->sun_size * r->sun_map_tiles > most)
+            return fail(err, "sun map: %d tiles of %d texels exceed the largest texture (%d); lower "
+                             "quality.sun_map_size", r->sun_map_tiles, r->sun_size, (int)most);
+        r->sun_tex = make_float_texture(gl, r->sun_size * r->sun_map_tiles, r->sun_size);
+        gl->GenFramebuffers(1, &r->sun_fbo);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
+        gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->sun_tex, 0);
+        GLenum buf = GL_COLOR_ATTACHMENT0;
+        gl->DrawBuffers(1, &buf);
+        GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (st != GL_FRAMEBUFFER_COMPLETE)
+            return fail(err, "sun %s map: framebuffer incomplete (0x%x)", r->shadow == CU_SHADOW_OSM ? "osm" : "fom",
+                        st);
+        return 0;
+    }
     return make_depth_target(r, &r->sun_tex, &r->sun_fbo, err);
 }
 
@@ -368,10 +397,11 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     cu_cloud_build(&r->cloud, &r->scene, &r->noise);
     cu_sky_compute(&r->sky, &r->scene);
     r->shadow = r->scene.shadow;
-    if (r->shadow == CU_SHADOW_PEEL && !r->float_rt) {
-        /* The opacity map needs float colour targets (EXT_color_buffer_float); without them Kol's estimate. */
-        cu_log(r, CU_LOG_WARN, "light.shadow = peel needs float render targets, which this context lacks: "
-                               "using the front-depth estimate");
+    if (r->shadow != CU_SHADOW_FRONT && !r->float_rt) {
+        /* The opacity maps need float colour targets (EXT_color_buffer_float); without them Kol's estimate. */
+        cu_log(r, CU_LOG_WARN, "light.shadow = %s needs float render targets, which this context lacks: "
+                               "using the front-depth estimate", r->shadow == CU_SHADOW_OSM ? "osm"
+                               : r->shadow == CU_SHADOW_FOM ? "fom" : "peel");
         r->shadow = CU_SHADOW_FRONT;
     }
     cu_sky_white_balance(&r->scene, r->white);
@@ -465,22 +495,29 @@ static void set_sun_uniforms(cu_renderer *r, GLuint p)
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_layers"), 2);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_tau"), 3);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_depth"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_sun_map"), 2);
 }
 
 static void shadow_pass(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
     double R = sun_R(r);
-    if (r->shadow == CU_SHADOW_PEEL) {
+    if (r->shadow == CU_SHADOW_OSM || r->shadow == CU_SHADOW_FOM) {
+        /* One pass over all tiles of their single target (fixed tile count: no interval bookkeeping). */
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
+        gl->Viewport(0, 0, r->sun_size * r->sun_map_tiles, r->sun_size);
+    } else if (r->shadow == CU_SHADOW_PEEL) {
         /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
         int J = cu_sun_max_intervals(&r->cloud, r->sky.sun_dir, 64);
         r->sun_intervals = J < 1 ? 1 : J > r->scene.sun_intervals ? r->scene.sun_intervals : J;
         if (J > r->scene.sun_intervals)
             cu_log(r, CU_LOG_INFO, "sun rays cross up to %d cloud intervals; the map keeps the first %d "
                                    "(light.sun_intervals)", J, r->scene.sun_intervals);
-        GLuint p = r->prog_sun_opacity;
         gl->BindFramebuffer(GL_FRAMEBUFFER, r->sun_opacity_fbo);
         gl->Viewport(0, 0, r->sun_size * r->sun_intervals, r->sun_size);
+    }
+    if (r->shadow != CU_SHADOW_FRONT) {
+        GLuint p = r->prog_sun_opacity;
         gl->Disable(GL_DEPTH_TEST);
         gl->UseProgram(p);
         cu_set_density_uniforms(r, p);

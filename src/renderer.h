@@ -26,12 +26,15 @@ struct cu_renderer {
     cu_sky sky;
 
     GLuint noise_tex, phase_tex;
-    GLuint sun_tex, sun_fbo;
+    GLuint sun_tex, sun_fbo;           /* front: the depth map; osm, fom: the RGBA32F map of sun_map_tiles tiles */
+    int sun_map_tiles;                 /* osm: 1 + slices / 4; fom: 1 + N / 2 for N coefficients */
     int shadow;                        /* the method in use (the scene's, or front when peel cannot run) */
     GLuint sun_layers_tex, sun_tau_tex, sun_opacity_fbo; /* peel: the opacity map, tiles of intervals */
     int sun_intervals;                 /* intervals present for the current sun direction */
     int ms_mode;                       /* the multiple-scattering mode in use (the scene's, or a fallback) */
     cu_slab_model *slab_model;         /* the fitted slab tables (slab and collector modes) */
+    struct cu_collector *collector;    /* the collector table (collector mode) */
+    GLuint coll_tex;
     GLuint slab_tab_tex;               /* the tables as a texture (ms_slab.glsl) */
     GLuint slab_a_tex[2], slab_n_tex[2], slab_fbo[2]; /* slab maps from the sun [0] and the zenith [1] */
     int sky_slab_dirty;

@@ -30,7 +30,7 @@ static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
 static const char *const profile_names[] = {"tapered", "kol", NULL};
 static const char *const ms_names[] = {"none", "octaves", "slab", "collector", NULL};
 static const char *const sky_names[] = {"preetham", "constant", NULL};
-static const char *const shadow_names[] = {"peel", "front", NULL};
+static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 static const char *const integration_names[] = {"exponential", "kol", NULL};
@@ -71,6 +71,8 @@ static const key_def keys[] = {
     {"light", "sun_intervals", K_INT, 1, S(sun_intervals), 1, 4, 0, NULL, ""},
     {"light", "sun_samples", K_INT, 1, S(sun_samples), 4, 64, 0, NULL, ""},
     {"light", "sun_filter", K_ENUM, 1, S(sun_filter), 0, 0, 0, filter_names, ""},
+    {"light", "osm_slices", K_INT, 1, S(osm_slices), 4, 64, 0, NULL, ""},
+    {"light", "fom_coefficients", K_INT, 1, S(fom_coefficients), 1, 16, 0, NULL, ""},
     {"ms", "mode", K_ENUM, 1, S(ms_mode), 0, 0, 0, ms_names, ""},
     {"ms", "octaves", K_INT, 1, S(ms_octaves), 1, 8, 0, NULL, ""},
     {"ms", "a", K_DOUBLE, 1, S(ms_a), 0, 1, 0, NULL, ""},
@@ -78,6 +80,7 @@ static const key_def keys[] = {
     {"ms", "c", K_DOUBLE, 1, S(ms_c), 0, 1, 0, NULL, ""},
     {"ms", "sky_light", K_ENUM, 1, S(sky_light), 0, 0, 0, bool_names, ""},
     {"ms", "blur", K_DOUBLE, 1, S(ms_blur_m), 0, 1e6, 1, NULL, "m"},
+    {"ms", "iterations", K_INT, 1, S(ms_iterations), 1, 32, 0, NULL, ""},
 };
 #undef S
 #undef E
@@ -114,8 +117,11 @@ void cu_scene_defaults(cu_scene *s)
     s->sun_intervals = 3;
     s->sun_samples = 32;
     s->sun_filter = 1;
+    s->osm_slices = 16;
+    s->fom_coefficients = 8;
     s->ms_mode = CU_MS_SLAB;
     s->ms_blur_m = 200;
+    s->ms_iterations = 10;
     s->ms_octaves = 4;
     s->ms_a = 0.5;
     s->ms_b = 0.5;
@@ -275,6 +281,8 @@ static int post_checks(cu_scene *s, const char *file, int have_sections[], const
     }
     if (s->sun_samples % 4)
         return fail(err, "%s: [light] 'sun_samples' must be a multiple of 4, got %d", file, s->sun_samples);
+    if (s->osm_slices % 4)
+        return fail(err, "%s: [light] 'osm_slices' must be a multiple of 4, got %d", file, s->osm_slices);
     double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
     if (dx * dx + dy * dy + dz * dz < 1e-12)
         return fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", file);
@@ -492,12 +500,16 @@ int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
     char label[600];
     snprintf(label, sizeof label, "--set %.40s.%.40s", section, key);
     w.file = label;
-    int old_samples = s->sun_samples;
+    int old_samples = s->sun_samples, old_slices = s->osm_slices;
     if (parse_value(k, key_target(s, k, ell), val, w, 0, err))
         return 1;
     if (s->sun_samples % 4) {
         s->sun_samples = old_samples;
         return fail(err, "--set light.sun_samples: must be a multiple of 4");
+    }
+    if (s->osm_slices % 4) {
+        s->osm_slices = old_slices;
+        return fail(err, "--set light.osm_slices: must be a multiple of 4");
     }
     if (strcmp(section, "sun") == 0 && strcmp(key, "irradiance") == 0)
         s->has_sun_irradiance = 1;

@@ -15,7 +15,7 @@ typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MI
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
 typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_SLAB, CU_MS_COLLECTOR } cu_ms_mode;
 typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
-typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT } cu_shadow_method;
+typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, CU_SHADOW_FOM } cu_shadow_method;
 
 struct cu_scene {
     char name[256];
@@ -59,11 +59,14 @@ struct cu_scene {
     int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */
     int sun_samples;          /* trapezoid segments per interval in the opacity pass (multiple of 4) */
     int sun_filter;           /* 0 nearest, 1 bilinear lookup of the opacity map */
+    int osm_slices;           /* shadow = osm: opacity slices per sun ray (multiple of 4, 4..64) */
+    int fom_coefficients;     /* shadow = fom: Fourier terms N (a_0..a_N-1, b_1..b_N-1) */
     /* [ms] */
     cu_ms_mode ms_mode;
     int ms_octaves;
     double ms_a, ms_b, ms_c;  /* Wrenninge: extinction, scattering and anisotropy factors per octave */
     int sky_light;            /* the isotropic sky-and-ground light term, 0/1 */
+    int ms_iterations;        /* collector search: most steps (Bouthors: most converge within 10) */
     double ms_blur_m;         /* slab model: width of the box the slab maps are averaged over (Kol: a fixed LOD) */
 };
 

@@ -2,6 +2,7 @@
  * from the sun and from the zenith (shaders_gles/slab_map.frag, mipmapped for the collector-area blur), and the
  * uniforms of shaders_gles/ms_slab.glsl. */
 #include "slabmap.h"
+#include "collector.h"
 #include "sunmap.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,8 +31,17 @@ int cu_slab_load(cu_renderer *r, cu_error *err)
     if (!r->slab_model && !(r->slab_model = malloc(sizeof *r->slab_model)))
         return sfail(err, "slab model: out of memory");
     char path[1024];
-    snprintf(path, sizeof path, "%s/slab_fit_bouthors.txt", r->desc.data_dir ? r->desc.data_dir : "data");
-    return cu_slab_model_load(r->slab_model, path, err);
+    const char *dir = r->desc.data_dir ? r->desc.data_dir : "data";
+    snprintf(path, sizeof path, "%s/slab_fit_bouthors.txt", dir);
+    if (cu_slab_model_load(r->slab_model, path, err))
+        return 1;
+    if (r->ms_mode != CU_MS_COLLECTOR)
+        return 0;
+    if (!r->collector && !(r->collector = calloc(1, sizeof *r->collector)))
+        return sfail(err, "collector table: out of memory");
+    cu_collector_free(r->collector);
+    snprintf(path, sizeof path, "%s/slab_collector.txt", dir);
+    return cu_collector_load(r->collector, path, err);
 }
 
 int cu_slab_defines(const cu_renderer *r, char *buf, size_t n)
@@ -40,9 +50,12 @@ int cu_slab_defines(const cu_renderer *r, char *buf, size_t n)
     int on = r->ms_mode == CU_MS_SLAB || r->ms_mode == CU_MS_COLLECTOR;
     /* sky and ground differ only under an analytic sky; a constant sky is the same from every direction */
     int split = on && r->scene.sky_light && r->scene.sky_model != CU_SKY_CONSTANT;
+    const cu_collector *c = r->ms_mode == CU_MS_COLLECTOR ? r->collector : NULL;
     return snprintf(buf, n, "#define SLAB_NT %d\n#define SLAB_NV %d\n#define SLAB_NL %d\n#define SLAB_NP %d\n"
-                            "#define SKY_SPLIT %d\n#define SLAB_SAMPLES %d\n",
-                    on ? m->nt : 1, on ? m->nv : 2, on ? m->nl : 1, on ? m->np : 2, split, SLAB_SAMPLES) >= (int)n;
+                            "#define SKY_SPLIT %d\n#define SLAB_SAMPLES %d\n#define COLL_NT %d\n#define COLL_NL %d\n"
+                            "#define COLL_NV %d\n#define COLL_NP %d\n#define COLL_ITER %d\n",
+                    on ? m->nt : 1, on ? m->nv : 2, on ? m->nl : 1, on ? m->np : 2, split, SLAB_SAMPLES,
+                    c ? c->nt : 1, c ? c->nl : 1, c ? c->nv : 2, c ? c->np : 1, r->scene.ms_iterations) >= (int)n;
 }
 
 static GLuint make_half_mip_texture(cu_gl *gl, int size)
@@ -79,6 +92,20 @@ int cu_slab_targets(cu_renderer *r, const char *defines, cu_error *err)
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     free(rgba);
+    if (r->ms_mode == CU_MS_COLLECTOR) {
+        const cu_collector *c = r->collector;
+        int cw = CU_COLL_ND * c->np, ch = c->nv * c->nl * c->nt;
+        float *px = malloc(sizeof(float) * 4 * (size_t)cw * (size_t)ch);
+        if (!px)
+            return sfail(err, "collector table: out of memory");
+        cu_collector_pack(c, px);
+        gl->GenTextures(1, &r->coll_tex);
+        gl->BindTexture(GL_TEXTURE_2D, r->coll_tex);
+        gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, cw, ch, 0, GL_RGBA, GL_FLOAT, px);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        free(px);
+    }
     if (!(r->prog_slab_map = cu_gl_program(gl, "fullscreen.vert", "slab_map.frag", defines, err)))
         return 1;
     int maps = r->scene.sky_light && r->scene.sky_model != CU_SKY_CONSTANT ? 2 : 1;
@@ -112,6 +139,8 @@ void cu_slab_delete(cu_renderer *r)
         r->slab_a_tex[i] = r->slab_n_tex[i] = r->slab_fbo[i] = 0;
     }
     if (r->slab_tab_tex) gl->DeleteTextures(1, &r->slab_tab_tex);
+    if (r->coll_tex) gl->DeleteTextures(1, &r->coll_tex);
+    r->coll_tex = 0;
     if (r->prog_slab_map) gl->DeleteProgram(r->prog_slab_map);
     r->slab_tab_tex = r->prog_slab_map = 0;
 }
@@ -183,6 +212,18 @@ void cu_slab_uniforms(cu_renderer *r, GLuint p)
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sky_right"), (float)r->sky_right.x, (float)r->sky_right.y,
                   (float)r->sky_right.z);
     gl->Uniform3f(gl->GetUniformLocation(p, "u_sky_up"), (float)r->sky_up.x, (float)r->sky_up.y, (float)r->sky_up.z);
+    if (r->coll_tex) {
+        const cu_collector *c = r->collector;
+        for (int i = 0; i < c->nt; i++) v[i] = (float)c->t[i];
+        gl->Uniform1fv(gl->GetUniformLocation(p, "u_coll_t"), c->nt, v);
+        for (int i = 0; i < c->nl; i++) v[i] = (float)c->thl[i];
+        gl->Uniform1fv(gl->GetUniformLocation(p, "u_coll_thl"), c->nl, v);
+        for (int i = 0; i < c->nv; i++) v[i] = (float)c->thv[i];
+        gl->Uniform1fv(gl->GetUniformLocation(p, "u_coll_thv"), c->nv, v);
+        for (int i = 0; i < c->np; i++) v[i] = (float)c->phi[i];
+        gl->Uniform1fv(gl->GetUniformLocation(p, "u_coll_phi"), c->np, v);
+        gl->Uniform1i(gl->GetUniformLocation(p, "u_coll"), 9);
+    }
 }
 
 void cu_slab_bind(cu_renderer *r)
@@ -190,8 +231,9 @@ void cu_slab_bind(cu_renderer *r)
     if (!r->slab_tab_tex)
         return;
     cu_gl *gl = &r->gl;
-    GLuint t[5] = {r->slab_tab_tex, r->slab_a_tex[0], r->slab_n_tex[0], r->slab_a_tex[1], r->slab_n_tex[1]};
-    for (int i = 0; i < 5; i++) {
+    GLuint t[6] = {r->slab_tab_tex, r->slab_a_tex[0], r->slab_n_tex[0], r->slab_a_tex[1], r->slab_n_tex[1],
+                   r->coll_tex};
+    for (int i = 0; i < 6; i++) {
         gl->ActiveTexture(GL_TEXTURE4 + (GLenum)i);
         gl->BindTexture(GL_TEXTURE_2D, t[i]);
     }
