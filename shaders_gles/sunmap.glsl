@@ -1,10 +1,25 @@
-// shaders_gles/sunmap.glsl: optical depth from the sun to a sample, by one of two methods (light.shadow):
+// shaders_gles/sunmap.glsl: optical depth from the sun to a sample, by one of four methods (light.shadow):
 //   SHADOW_PEEL 1: the opacity map of the union's intervals along each sun-map texel's ray (sun_opacity.frag): the
 //      sample's interval is found by its depth, tau = the intervals before it + a piecewise-linear estimate from
 //      tau at 1/4, 1/2, 3/4 and 1 of its own interval. Exact in gaps and concavities; noise included.
-//   SHADOW_PEEL 0: Kol's estimate l * k_e(p) with l the distance below the front depth (wrong across gaps and
-//      concavities, and banded where k_e(p) varies; kept for the trade study).
-// Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER.
+//   SHADOW_PEEL 0 (SHADOW_METHOD 1): Kol's estimate l * k_e(p) with l the distance below the front depth (wrong
+//      across gaps and concavities, and banded where k_e(p) varies; kept for the trade study).
+//   SHADOW_METHOD 2 (osm): regular-slice opacity shadow maps (sun_osm.frag): tau at OSM_SLICES depths spaced evenly
+//      between the texel ray's first entry and last exit, linear between slices.
+//   SHADOW_METHOD 3 (fom): Fourier opacity maps (sun_fom.frag): tau(z) reconstructed from FOM_COEFFS Fourier terms
+//      of k_e over the same per-texel range, clamped to [0, tau of the whole ray].
+// SHADOW_METHOD is the cu_shadow_method (0 peel, 1 front, 2 osm, 3 fom); without it SHADOW_PEEL picks peel or front.
+// Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER (and OSM_SLICES or FOM_COEFFS).
+#ifndef SHADOW_METHOD
+#if SHADOW_PEEL
+#define SHADOW_METHOD 0
+#else
+#define SHADOW_METHOD 1
+#endif
+#endif
+#ifndef FOM_FEJER
+#define FOM_FEJER 0
+#endif
 uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_right, u_sun_up;
 uniform float u_sun_R;         // the sun plane is at 2R along u_sun_dir, maps cover [-R, R]^2
@@ -13,6 +28,8 @@ uniform int u_sun_size;        // texels per side
 uniform sampler2D u_sun_layers;  // per interval j (tile j of SUN_INTERVALS side by side): z_entry, z_exit (m)
 uniform sampler2D u_sun_tau;     // tau at 1/4, 1/2, 3/4, 1 of interval j, counted from its entry
 uniform int u_sun_intervals;     // intervals present in this sun direction (<= SUN_INTERVALS)
+#elif SHADOW_METHOD == 2 || SHADOW_METHOD == 3
+uniform sampler2D u_sun_map;     // osm / fom: RGBA32F tiles side by side, tile 0 starting with (z0, z1)
 #else
 uniform sampler2D u_sun_depth;   // front depth / 4R
 #endif
@@ -44,13 +61,67 @@ float tau_in_texel(ivec2 tc, float z)
     }
     return tau;
 }
+#elif SHADOW_METHOD == 2
+float osm_slice(ivec2 tc, int i)
+{
+    return texelFetch(u_sun_map, ivec2(tc.x + (1 + i / 4) * u_sun_size, tc.y), 0)[i - 4 * (i / 4)];
+}
+
+// Slice i holds tau at z0 + (i + 1) / OSM_SLICES (z1 - z0); tau = 0 at z0 and the total beyond z1.
+float tau_in_texel(ivec2 tc, float z)
+{
+    vec2 r = texelFetch(u_sun_map, tc, 0).xy;
+    if (z <= r.x)
+        return 0.0; // before the first entry, or a ray that misses (z0 = 1e30)
+    float f = min((z - r.x) / max(r.y - r.x, 1e-6), 1.0) * float(OSM_SLICES);
+    int m = min(int(f), OSM_SLICES - 1);
+    float hi = osm_slice(tc, m);
+    float lo = m > 0 ? osm_slice(tc, m - 1) : 0.0;
+    return mix(lo, hi, f - float(m));
+}
+#elif SHADOW_METHOD == 3
+const int FOM_TILES = 1 + FOM_COEFFS / 2;
+
+// tau(x) = a0/2 x + sum_k>=1 [a_k sin(w_k x) + b_k (1 - cos(w_k x))] / w_k, x = z - z0, w_k = 2 pi k / D; cos and
+// sin of k theta by rotation. Clamped to [0, a0 D / 2] (the exact total at z1): ringing of the truncated series
+// cannot make tau negative or exceed the whole ray's; before z0 it is 0, beyond z1 the total. Tile t >= 1 holds
+// (a_k, b_k, a_k+1, b_k+1), k = 2t - 1 (sun_fom.frag).
+float tau_in_texel(ivec2 tc, float z)
+{
+    vec4 c0 = texelFetch(u_sun_map, tc, 0);
+    if (z <= c0.x)
+        return 0.0;
+    float D = max(c0.y - c0.x, 1e-6);
+    float total = 0.5 * c0.z * D;
+    if (z >= c0.y)
+        return total;
+    float x = z - c0.x;
+    float th = 2.0 * PI * x / D;
+    vec2 r1 = vec2(cos(th), sin(th)), rk = vec2(1.0, 0.0);
+    float sum = 0.0; // sum_k [a_k sin(k th) + b_k (1 - cos(k th))] / k
+    for (int t = 1; t < FOM_TILES; t++) {
+        vec4 c = texelFetch(u_sun_map, ivec2(tc.x + t * u_sun_size, tc.y), 0);
+        float k = float(2 * t - 1);
+        rk = vec2(rk.x * r1.x - rk.y * r1.y, rk.x * r1.y + rk.y * r1.x); // (cos k th, sin k th)
+#if FOM_FEJER
+        vec2 w = max(1.0 - vec2(k, k + 1.0) / float(FOM_COEFFS), 0.0); // Fejer means: k_e >= 0, so tau is monotone
+#else
+        vec2 w = vec2(1.0);
+#endif
+        sum += w.x * (c.x * rk.y + c.y * (1.0 - rk.x)) / k;
+        rk = vec2(rk.x * r1.x - rk.y * r1.y, rk.x * r1.y + rk.y * r1.x);
+        sum += w.y * (c.z * rk.y + c.w * (1.0 - rk.x)) / (k + 1.0);
+    }
+    float tau = 0.5 * c0.z * x + sum * D / (2.0 * PI);
+    return clamp(tau, 0.0, total);
+}
 #endif
 
 float sun_optical_depth(vec3 p, float ke)
 {
     vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
     float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
-#if SHADOW_PEEL
+#if SHADOW_METHOD != 1
     vec2 f = uv * float(u_sun_size) - 0.5;
     ivec2 i0 = ivec2(floor(f));
     int hi = u_sun_size - 1;

@@ -50,7 +50,7 @@ static const knob KNOBS[] = {
     {"quality.max_intervals", 3, 4, {"1", "2", "3", "6"}, {0, 1, 0, 1}},
     {"quality.noise_octaves", 5, 6, {"off", "1", "2", "3", "4", "5"}, {0, 0, 1, 0, 0, 1}},
     {"quality.sun_map_size", 1, 4, {"64", "128", "256", "512"}, {0}},
-    {"light.shadow", 0, 2, {"peel", "front"}, {0}},
+    {"light.shadow", 0, 4, {"peel", "front", "osm", "fom"}, {0}},
     {"light.sun_intervals", 2, 3, {"1", "2", "3"}, {0}},
     {"light.sun_samples", 2, 4, {"8", "16", "32", "64"}, {0}},
     {"ms.mode", 2, 3, {"none", "octaves", "slab"}, {1, 0, 1}},
