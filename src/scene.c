@@ -1,6 +1,7 @@
 /* src/scene.c: parses INI-style scene files and --set overrides into a cu_scene, rejecting bad input with
  * file:line:column messages that name the field. */
 #include "scene.h"
+#include "presets.h"
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -34,6 +35,7 @@ static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 static const char *const integration_names[] = {"exponential", "kol", NULL};
+static const char *const preset_names[] = {"high", "medium", "low", NULL};
 
 #define S(f) offsetof(cu_scene, f)
 #define E(f) offsetof(cu_ellipsoid, f)
@@ -67,6 +69,7 @@ static const key_def keys[] = {
     {"quality", "noise_octaves", K_INT, 1, S(noise_octaves), 1, 5, 0, NULL, ""},
     {"quality", "sun_map_size", K_INT, 1, S(sun_map_size), 16, 4096, 0, NULL, "texels"},
     {"quality", "integration", K_ENUM, 1, S(integration), 0, 0, 0, integration_names, ""},
+    {"quality", "preset", K_ENUM, 1, S(preset), 0, 0, 0, preset_names, ""},
     {"light", "shadow", K_ENUM, 1, S(shadow), 0, 0, 0, shadow_names, ""},
     {"light", "sun_intervals", K_INT, 1, S(sun_intervals), 1, 4, 0, NULL, ""},
     {"light", "sun_samples", K_INT, 1, S(sun_samples), 4, 64, 0, NULL, ""},
@@ -85,6 +88,8 @@ static const key_def keys[] = {
 #undef S
 #undef E
 #define N_KEYS ((int)(sizeof keys / sizeof keys[0]))
+/* cu_scene.explicit_key has one flag per key */
+typedef char keys_fit_explicit_flags[N_KEYS <= (int)sizeof(((cu_scene *)0)->explicit_key) ? 1 : -1];
 
 static const char *const sections[] = {"output", "camera", "sun", "sky", "cloud", "ellipsoid", "quality", "light",
                                        "ms", NULL};
@@ -289,6 +294,30 @@ static int post_checks(cu_scene *s, const char *file, int have_sections[], const
     return 0;
 }
 
+/* Applies the scene's quality preset to every key it lists that the file (or an earlier --set) did not set itself:
+ * explicit keys win wherever they appear. */
+static int apply_preset(cu_scene *s, const char *file, cu_error *err)
+{
+    char list[2048];
+    snprintf(list, sizeof list, "%s", cu_preset_settings((cu_preset)s->preset));
+    char *save = NULL;
+    for (char *item = strtok_r(list, ";", &save); item; item = strtok_r(NULL, ";", &save)) {
+        char *eq = strchr(item, '='), *dot = strchr(item, '.');
+        if (!eq || !dot || dot > eq)
+            return fail(err, "%s: preset '%s': malformed entry '%s'", file, preset_names[s->preset], item);
+        *eq = *dot = 0;
+        const key_def *k = find_key(item, dot + 1);
+        if (!k)
+            return fail(err, "%s: preset '%s': unknown key '%s.%s'", file, preset_names[s->preset], item, dot + 1);
+        if (s->explicit_key[k - keys])
+            continue;
+        where w = {"preset", 0};
+        if (parse_value(k, key_target(s, k, 0), eq + 1, w, 0, err))
+            return 1;
+    }
+    return 0;
+}
+
 int cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t len, cu_error *err)
 {
     *out = NULL;
@@ -416,6 +445,7 @@ int cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t le
             return fail(err, "%s:%d:%d: duplicate key '%s' in [%s]", name, lineno, col, k->name, section);
         }
         seen.seen[ki] = 1;
+        s->explicit_key[ki] = 1;
         if (!*val) {
             free(s);
             return fail(err, "%s:%d:%d: '%s' has no value", name, lineno, vcol, k->name);
@@ -434,7 +464,8 @@ int cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t le
         free(s);
         return fail(err, "%s:1:1: empty scene file", name);
     }
-    if (post_checks(s, name, have_sections, ell_line, (const unsigned char(*)[2])ell_seen, err)) {
+    if (post_checks(s, name, have_sections, ell_line, (const unsigned char(*)[2])ell_seen, err) ||
+        apply_preset(s, name, err)) {
         free(s);
         return 1;
     }
@@ -511,6 +542,10 @@ int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
         s->osm_slices = old_slices;
         return fail(err, "--set light.osm_slices: must be a multiple of 4");
     }
+    if (strcmp(section, "ellipsoid") != 0)
+        s->explicit_key[k - keys] = 1;
+    if (strcmp(section, "quality") == 0 && strcmp(key, "preset") == 0 && apply_preset(s, "--set", err))
+        return 1;
     if (strcmp(section, "sun") == 0 && strcmp(key, "irradiance") == 0)
         s->has_sun_irradiance = 1;
     return 0;

@@ -19,6 +19,7 @@ typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, 
 
 struct cu_scene {
     char name[256];
+    unsigned char explicit_key[96]; /* keys the file or --set gave (a preset does not override them) */
     /* [output] */
     int width, height;
     double exposure;          /* multiplies radiance (kcd/m^2) before tone mapping */
@@ -54,6 +55,7 @@ struct cu_scene {
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
     int sun_map_size;         /* texels per side */
     int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
+    int preset;               /* cu_preset: high (the defaults), medium, low (presets.c) */
     /* [light] */
     cu_shadow_method shadow;
     int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */

@@ -53,7 +53,8 @@ static const knob KNOBS[] = {
     {"light.shadow", 0, 4, {"peel", "front", "osm", "fom"}, {0}},
     {"light.sun_intervals", 2, 3, {"1", "2", "3"}, {0}},
     {"light.sun_samples", 2, 4, {"8", "16", "32", "64"}, {0}},
-    {"ms.mode", 2, 3, {"none", "octaves", "slab"}, {1, 0, 1}},
+    {"ms.mode", 2, 4, {"none", "octaves", "slab", "collector"}, {1, 0, 1, 0}},
+    {"ms.blur", 1, 3, {"100", "200", "400"}, {0}},
     {"ms.sky_light", 1, 2, {"off", "on"}, {0}},
     {"quality.integration", 0, 2, {"exponential", "kol"}, {0}},
     {"cloud.phase", 0, 3, {"mie", "hg", "cornette-shanks"}, {0}},
@@ -685,6 +686,22 @@ static int measure_config(sweep *sw, const config *c, const char *kind, const ch
     return 0;
 }
 
+/* Presets keep the scene's content: a knob value that changes what the cloud is rather than how precisely it is
+ * rendered (noise switched off, another phase function) is measured and reported but never chosen for a preset, even
+ * when it lowers the error against the reference (the first sweep picked quality.noise = off for medium: smooth
+ * clouds are easier to match, but they are not the scene). */
+static int preset_eligible(int k, int j)
+{
+    if (strcmp(KNOBS[k].name, "cloud.phase") == 0)
+        return j == KNOBS[k].high;
+    if (strcmp(KNOBS[k].name, "quality.noise_octaves") == 0)
+        return strcmp(KNOBS[k].vals[j], "off") != 0;
+    /* the output resolution is the application's (--size), not a scene key a preset can carry */
+    if (strcmp(KNOBS[k].name, "output.scale") == 0)
+        return j == KNOBS[k].high;
+    return 1;
+}
+
 /* Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
  * time saved (prediction: the one-at-a-time deltas, relative to the value the knob has now), re-measure the
  * combination on every view, until the measured time ratio is within the budget. */
@@ -709,7 +726,7 @@ static int choose_presets(sweep *sw, const result *single_agg, const int *vidx, 
         double best = 1e300;
         for (int k = 0; k < NKNOBS; k++)
             for (int j = 0; j < KNOBS[k].nvals; j++) {
-                if (j == cur.v[k] || vidx[k * SW_MAX_VALUES + j] < 0)
+                if (j == cur.v[k] || vidx[k * SW_MAX_VALUES + j] < 0 || !preset_eligible(k, j))
                     continue;
                 int cj = cur.v[k];
                 const result *a = &single_agg[vidx[k * SW_MAX_VALUES + j]];
@@ -767,7 +784,7 @@ static int choose_presets(sweep *sw, const result *single_agg, const int *vidx, 
                 cand = trail[i];
             } else {
                 int k = (i - *ntrail) / SW_MAX_VALUES, j = (i - *ntrail) % SW_MAX_VALUES;
-                if (k >= NKNOBS || j >= KNOBS[k].nvals || vidx[k * SW_MAX_VALUES + j] <= 0)
+                if (k >= NKNOBS || j >= KNOBS[k].nvals || vidx[k * SW_MAX_VALUES + j] <= 0 || !preset_eligible(k, j))
                     continue;
                 config_high(&cand.c);
                 cand.c.v[k] = j;

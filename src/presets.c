@@ -1,0 +1,23 @@
+/* src/presets.c: the quality presets (see presets.h). Copied from docs/sweep_presets.txt, written by `make sweep`;
+ * tests/test_cli.sh checks that the two agree. */
+#include "presets.h"
+
+static const char *const SETTINGS[CU_PRESET_COUNT] = {
+    /* high: the defaults */
+    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
+    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
+    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    /* medium */
+    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
+    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
+    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    /* low */
+    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
+    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
+    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+};
+
+const char *cu_preset_settings(cu_preset p)
+{
+    return p >= 0 && p < CU_PRESET_COUNT ? SETTINGS[p] : SETTINGS[0];
+}
