@@ -18,6 +18,7 @@ static const char *USAGE =
     "  engine table: --table FILE [--reff UM --veff V | --monodisperse --radius UM] [--band LO,HI,STEP]\n"
     "options: --m N,K   refractive index n - ik (K >= 0; overrides water)   --dx D  radius step in size parameter\n"
     "         --tail-stretch S  radius step multiplier past the bulk of the distribution (default 4, 1 = uniform)\n"
+    "         --poles 0|1  subtract the quadrature error of resonances narrower than the step (default 1)\n"
     "         --threads T (1-8)   --help\n";
 
 /* Every argument error is one line naming the argument, then exit status 2 (see tools/mie/test_mie_cli.sh). */
@@ -92,7 +93,7 @@ int main(int argc, char **argv)
         }
         static const char *const valued[] = {"--reff", "--veff",   "--lambda", "--angles", "--radius", "--m",
                                              "--x",    "--table", "--dx",     "--band",   "--threads",
-                                             "--tail-stretch"};
+                                             "--tail-stretch", "--poles"};
         int known = 0;
         for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
             known |= !strcmp(a, valued[k]);
@@ -145,6 +146,10 @@ int main(int argc, char **argv)
         } else if (!strcmp(a, "--tail-stretch")) {
             if (num(v, 1.0, 8.0, &p.tail_stretch))
                 return bad(a, "expected a step multiplier for the large-radius tail, 1-8", v);
+        } else if (!strcmp(a, "--poles")) {
+            if (strcmp(v, "0") && strcmp(v, "1"))
+                return bad(a, "expected 1 (correct the radius quadrature at narrow resonances) or 0", v);
+            p.poles = v[0] == '1';
         } else if (!strcmp(a, "--band")) {
             if (numlist(v, 1e-3, 1100.0, t, 3) != 3 || !(t[0] >= 200.0) || !(t[1] > t[0]))
                 return bad(a, "expected LO,HI,STEP in nm with 200 <= LO < HI <= 1100", v);

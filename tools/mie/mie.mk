@@ -1,6 +1,6 @@
 # tools/mie: the Lorenz-Mie solver (build/cumulo-mie), its unit tests (build/test_mie) and CLI/table tests.
 
-MIE_LIB_SRC := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c
+MIE_LIB_SRC := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c tools/mie/resonance.c
 MIE_LIB_OBJ := $(MIE_LIB_SRC:%.c=$(B)/obj/%.o)
 MIE_OBJ_DIR := $(B)/obj/tools/mie
 

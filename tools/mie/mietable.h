@@ -16,6 +16,7 @@ typedef struct {
     int use_m;            /* 1: use m below instead of water at each wavelength */
     double complex m;     /* Wiscombe convention n - ik */
     int threads;          /* worker threads over wavelengths (results do not depend on it) */
+    int poles;            /* 1: correct the radius quadrature for resonances narrower than the step (resonance.h) */
 } mt_params;
 
 mt_params mt_params_default(void);
@@ -48,7 +49,8 @@ typedef struct {
     double g[3];           /* asymmetry from the Mie coefficients, not from the sampled p */
     double m_re[3];        /* refractive index at lambda_nm (informational) */
     int nsizes;            /* most radius nodes used at any one wavelength (informational) */
-    long nsolves;          /* Mie evaluations made */
+    long nsolves;          /* Mie evaluations made (grid nodes and resonances) */
+    long npoles;           /* resonance poles corrected for */
 } mt_result;
 
 /* Averages over sizes (and, for a band, over wavelength with linear-sRGB weights); err gets a message. */
