@@ -33,7 +33,8 @@ int cu_slab_load(cu_renderer *r, cu_error *err)
     char path[1024];
     const char *dir = r->desc.data_dir ? r->desc.data_dir : "data";
     snprintf(path, sizeof path, "%s/slab_fit_bouthors.txt", dir);
-    if (cu_slab_model_load(r->slab_model, path, err))
+    cu_slab_transport tr;
+    if (cu_slab_committed_transport(dir, &tr, err) || cu_slab_model_load(r->slab_model, path, tr, err))
         return 1;
     if (r->ms_mode != CU_MS_COLLECTOR)
         return 0;

@@ -27,10 +27,20 @@ typedef struct cu_slab_model {
     double kappa[CU_SLAB_MAX_T][CU_SLAB_MAX_L];      /* energy scaling <= 1 (slabmodel.c: conserve_energy) */
 } cu_slab_model;
 
+/* The transport the tables were simulated with, for the energy check: single-scattering anisotropy g and the
+ * factor from the tables' optical depth to the transported one (1, or 1 - f for a chopped Mie table, delta-M). */
+typedef struct cu_slab_transport {
+    double g, tau_scale;
+} cu_slab_transport;
+
 /* Reads the table; every (name, group, thickness, node) must be present exactly once, on the same node grids for
  * every group and thickness, with finite values (and positive where the model takes a logarithm). Errors read
  * "path:line: ...". */
-int cu_slab_model_load(cu_slab_model *m, const char *path, cu_error *err);
+int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr, cu_error *err);
+
+/* The transport of the tables committed in data/ (which phase function tools/slab/gen_tables.sh used for them). */
+#define CU_SLAB_TABLES_MIE 0
+int cu_slab_committed_transport(const char *data_dir, cu_slab_transport *tr, cu_error *err);
 
 /* Multiply scattered radiance I/F_sun (sr^-1) at depth d (m, below the lit face) in a slab of thickness t (m), both
  * at CU_SLAB_KE_REF, toward view altitude thV (deg, 0 = light going down, 180 = up, Kol Fig. 3.6) with the sun at

@@ -41,7 +41,9 @@ static int load_variant(int drop, const char *replace_from, const char *replace_
     fclose(in);
     fclose(out);
     cu_slab_model *m = malloc(sizeof *m);
-    int rc = cu_slab_model_load(m, T_DIR "/variant.txt", e);
+    cu_slab_transport tr;
+    assert_int_equal(cu_slab_committed_transport("data", &tr, e), 0);
+    int rc = cu_slab_model_load(m, T_DIR "/variant.txt", tr, e);
     free(m);
     return rc;
 }
@@ -80,12 +82,13 @@ static void test_table_loader_rejects_bad_input(void **st)
     longline[sizeof longline - 1] = 0;
     expect_error(load_variant(0, NULL, NULL, longline, &e), &e, "longer than");
     cu_slab_model *m = malloc(sizeof *m);
-    expect_error(cu_slab_model_load(m, T_DIR "/nope.txt", &e), &e, "cannot open");
+    cu_slab_transport tr = {0.85, 1};
+    expect_error(cu_slab_model_load(m, T_DIR "/nope.txt", tr, &e), &e, "cannot open");
     FILE *f = fopen(T_DIR "/binary.txt", "wb");
     for (int i = 0; i < 300; i++)
         fputc((i * 7919) & 0xff, f);
     fclose(f);
-    assert_int_not_equal(cu_slab_model_load(m, T_DIR "/binary.txt", &e), 0);
+    assert_int_not_equal(cu_slab_model_load(m, T_DIR "/binary.txt", tr, &e), 0);
     free(m);
 }
 
@@ -96,7 +99,9 @@ static void test_model_evaluation_is_finite_and_bounded(void **st)
     (void)st;
     cu_slab_model *m = malloc(sizeof *m);
     cu_error e;
-    assert_int_equal(cu_slab_model_load(m, "data/slab_fit_bouthors.txt", &e), 0);
+    cu_slab_transport tr;
+    assert_int_equal(cu_slab_committed_transport("data", &tr, &e), 0);
+    assert_int_equal(cu_slab_model_load(m, "data/slab_fit_bouthors.txt", tr, &e), 0);
     double worst = 0;
     for (double t = 1; t < 1e5; t *= 1.7)
         for (double rel = 0; rel <= 1.0; rel += 0.125)
@@ -130,7 +135,9 @@ static void test_slab_energy_bounded(void **st)
     (void)st;
     cu_slab_model *m = malloc(sizeof *m);
     cu_error e;
-    assert_int_equal(cu_slab_model_load(m, "data/slab_fit_bouthors.txt", &e), 0);
+    cu_slab_transport tr;
+    assert_int_equal(cu_slab_committed_transport("data", &tr, &e), 0);
+    assert_int_equal(cu_slab_model_load(m, "data/slab_fit_bouthors.txt", tr, &e), 0);
     double worst = 0;
     for (double t = 10; t < 5000; t *= 1.5)
         for (double thl = 0; thl <= 70; thl += 10) {
@@ -145,7 +152,7 @@ static void test_slab_energy_bounded(void **st)
                     double dw = sin(tv) * (CU_PI / NV) * (2 * CU_PI / NP);
                     ms += cu_slab_model_eval(m, 1, t, thv > 90 ? 0 : t, thv, thl, th) * fabs(cos(tv)) * dw / mu0;
                 }
-            double total = ms + exp(-t * CU_SLAB_KE_REF / mu0);
+            double total = ms + exp(-t * CU_SLAB_KE_REF * tr.tau_scale / mu0);
             worst = fmax(worst, total);
         }
     printf("slab model: largest multiply scattered + direct flux over t = 10..5000 m, thL = 0..70: %.4f\n", worst);

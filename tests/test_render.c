@@ -253,7 +253,8 @@ static void test_no_nan_in_any_scene(void **st)
     static const char *const variants[][3] = {
         {NULL}, {"ms.mode=octaves", NULL}, {"ms.mode=none", NULL}, {"cloud.profile=kol", NULL},
         {"quality.integration=kol", "light.shadow=front", NULL},
-        {"cloud.phase=hg", "cloud.g=0.99", NULL}, {"cloud.boundary=0", NULL}, {"quality.segment_ratio=1", NULL}};
+        {"cloud.phase=hg", "cloud.g=0.99", NULL}, {"cloud.boundary=0", NULL}, {"quality.segment_ratio=1", NULL},
+        {"ms.mode=collector", "light.shadow=osm", NULL}, {"light.shadow=fom", NULL}};
     for (int b = 0; b < 2; b++) {
         tr_ctx c;
         if (tr_open(&c, backends[b], 96, 72, 1))
