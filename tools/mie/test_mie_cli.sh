@@ -34,6 +34,7 @@ t_expect threads-zero 2 "--threads" -- $BIN --threads 0 --lambda 550
 t_expect band-reversed 2 "--band" -- $BIN --table build/x.tbl --band 700,400,10
 t_expect table-with-lambda 2 "--lambda" -- $BIN --table build/x.tbl --lambda 550
 t_expect dx-zero 2 "--dx" -- $BIN --dx 0
+t_expect poles-two 2 "--poles" -- $BIN --poles 2 --lambda 550
 
 # --- one sphere (VALIDATION.md: m = 1.33 - 1e-5 i, x = 100) ------------------------------------------------------
 out=$($BIN --m 1.33,1e-5 --x 100 --angles 0,30,90,180 2>&1)
