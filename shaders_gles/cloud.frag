@@ -74,6 +74,27 @@ float hg(float g, float mu)
 
 float ph_oct[MS_OCTAVES];
 
+// Light a segment of optical depth dt scatters toward its entry, per unit of source: int_0^dt e^-u S(u) du with S
+// log-linear from S0 to S1, S(u) = S0 e^(-b u / dt), b = ln(S0 / S1): S0 dt (1 - e^-(dt + b)) / (dt + b). The
+// sunlit source falls like e^(-tau_sun) across a segment, by e^3 in a thick one, where the mean of the two ends
+// (the old form) doubled the single scattering seen through a tau = 8 slab from below with 5 segments. Falls back
+// to the mean of the ends where a channel is zero.
+vec3 segment_source(float dt, vec3 S0, vec3 S1)
+{
+    vec3 r = vec3(0.0);
+    float e = 1.0 - exp(-dt);
+    for (int c = 0; c < 3; c++) {
+        float a = S0[c], b1 = S1[c];
+        if (a > 1e-30 && b1 > 1e-30) {
+            float x = dt + log(a / b1);
+            r[c] = abs(x) > 1e-4 ? a * dt * (1.0 - exp(-x)) / x : a * dt * (1.0 - 0.5 * x);
+        } else {
+            r[c] = 0.5 * (a + b1) * e;
+        }
+    }
+    return r;
+}
+
 // Light scattered toward the eye per unit extinction at p, relative to the sun's irradiance: single scattering of
 // the attenuated sunbeam (eq. 3.21 without k_e and without the view transmittance) plus the multiple-scattering term.
 vec3 source(vec3 p, float ke, vec3 ph0)
@@ -176,25 +197,20 @@ void main()
         // trapezoids; just inside, they see the one-sided limit. Segment lengths stay those of [a, b].
         float len = b - a;
         float nudge = min(1e-3 * len, 0.05);
-        // The boundary ramps (density 0 -> k_e over h) get a segment of their own at both ends (ramp_length in
-        // density.glsl): a trapezoid across the whole ramp is exact for the symmetric sigmoid, where a long segment
-        // from the surface into the core would take it for a linear rise over the segment (-24% tau at h = 1 m).
-        float rl = ramp_length(len, nudge);
-        int nseg = SEGMENTS * merged;
-        float core = len - 2.0 * rl;
-        float r = u_seg_ratio;
-        float rn = r > 1.0001 ? pow(r, float(nseg)) - 1.0 : 0.0;
-        float seg = r > 1.0001 ? core * (r - 1.0) / rn : core / float(nseg);
+        // Knots: the boundary ramps get segments of their own, the core SEGMENTS per merged chord in geometric
+        // progression (make_knots in density.glsl).
+        knots kn = make_knots(a, len, nudge, SEGMENTS * merged, u_seg_ratio, true);
+        int nk = knot_count(kn);
         float t = a;
         vec3 p = ro + dir * (t + nudge);
         vec3 p_entry = p;     // Kol's "multiple scattering point": the interval's entry, a hair inside
         float ke_prev = extinction(p, t + nudge);
         vec3 S_prev = source(p, ke_prev, ph0);
-        for (int i = rl > 0.0 ? -1 : 0; i < nseg + (rl > 0.0 ? 1 : 0); i++) {
-            // i = -1 and nseg: the ramps; 0 .. nseg-1: the core, the last core segment ends at b - rl
-            bool last = i == nseg - (rl > 0.0 ? 0 : 1);
-            float x = i < 0 ? rl : last ? b - t : (i == nseg - 1 ? b - rl - t : seg);
-            t += x;
+        for (int i = 1; i <= nk; i++) {
+            bool last = i == nk;
+            float t_new = last ? b : knot_t(kn, i);
+            float x = t_new - t;
+            t = t_new;
             float ts_at = last ? t - nudge : t;
             p = ro + dir * ts_at;
             float ke = extinction(p, ts_at);
@@ -205,17 +221,16 @@ void main()
             // (dtau/2) coth(dtau/2): 7% at dtau = 0.9, 66% at dtau = 3.
             L += x * 0.5 * (ke_prev * S_prev * exp(-taup) + ke * S * exp(-(taup + DM_SCALE * dtau)));
 #else
-            // Energy-conserving: the source per unit extinction S taken as its segment mean, the extinction
-            // integrated exactly: the segment adds e^-tau (1 - e^-dtau) <S>, in delta-M form (tau' = (1 - f) tau,
-            // phase P~ / (1 - f)). Exact for any k_e profile when S is uniform.
-            L += exp(-taup) * (1.0 - exp(-DM_SCALE * dtau)) * 0.5 * (S_prev + S) / DM_SCALE;
+            // Energy-conserving: the extinction integrated exactly, the source per unit extinction S log-linear
+            // between the segment's ends (segment_source), in delta-M form (tau' = (1 - f) tau, phase
+            // P~ / (1 - f)). Exact for any k_e profile when S is uniform (the furnace), and when S falls
+            // exponentially along the segment, as the sunlit source does.
+            L += exp(-taup) * segment_source(DM_SCALE * dtau, S_prev, S) / DM_SCALE;
 #endif
             tau += dtau;
             taup += DM_SCALE * dtau;
             ke_prev = ke;
             S_prev = S;
-            if (i >= 0)
-                seg *= r;
         }
 #if MS_MODE >= 2
         // The interval's multiple scattering, evaluated once at its entry and blended with its opacity (Kol 3.4.4).

@@ -89,13 +89,44 @@ float extinction(vec3 p, float t)
 #endif
 }
 
-// Length of the boundary ramp at each end of an in-cloud interval of length len for the integrators: h, when the
-// boundary is thicker than the end nudge and the interval has a core between its ramps; else 0 (no ramp segments).
-// Exact along the normal of a lone ellipsoid; along oblique rays the ramp is longer and the first core segment
-// sees the rest of it.
-float ramp_length(float len, float nudge)
+// Knots of the quadrature over an in-cloud interval [a, a + len] with n segments. The boundary ramps (density rising
+// over h at each end) get segments of their own, in proportion to their length but at least one: the ramp/core
+// border is then a knot, and with a thin boundary its one trapezoid is exact for the symmetric sigmoid, where a long
+// segment from the surface into the core took the rise for a linear one over the whole segment (-24 % tau at h = 1 m
+// and 5 segments). With a thick noisy boundary the ramps keep their share of the samples (the noise lives there).
+// Exact along the normal of a lone ellipsoid; along oblique rays the ramp is longer and the core's first segments
+// see the rest of it. The core's segments grow geometrically by r (1: uniform).
+struct knots {
+    float a, len, rl, r;
+    int nr, nc;
+};
+
+knots make_knots(float a, float len, float nudge, int n, float r, bool allow_ramps)
 {
-    return (u_h > 2.0 * nudge && 2.0 * u_h < 0.5 * len) ? u_h : 0.0;
+    knots k;
+    k.a = a; k.len = len; k.r = r;
+    bool ramps = allow_ramps && u_h > 2.0 * nudge && 2.0 * u_h < 0.5 * len;
+    k.rl = ramps ? u_h : 0.0;
+    k.nr = ramps ? max(1, int(floor(float(n) * u_h / len + 0.5))) : 0;
+    k.nc = max(1, n - 2 * k.nr);
+    return k;
+}
+
+int knot_count(knots k)
+{
+    return k.nc + 2 * k.nr;
+}
+
+float knot_t(knots k, int i)
+{
+    int n = k.nc + 2 * k.nr;
+    if (k.nr > 0 && i <= k.nr)
+        return k.a + k.rl * float(i) / float(k.nr);
+    if (k.nr > 0 && i >= n - k.nr)
+        return k.a + k.len - k.rl * float(n - i) / float(k.nr);
+    float j = float(i - k.nr), core = k.len - 2.0 * k.rl;
+    float f = k.r > 1.0001 ? (pow(k.r, j) - 1.0) / (pow(k.r, float(k.nc)) - 1.0) : j / float(k.nc);
+    return k.a + k.rl + core * f;
 }
 
 // Intersects the ray ro + t dir (dir unit) with every ellipsoid and keeps the chords with t1 > 0, clipped to t >= 0
@@ -145,29 +176,39 @@ int next_interval(int k, out float a, out float b, out int merged)
     return k;
 }
 
-// Optical depth through the in-cloud interval [a, b] of the ray ro + t dir: the boundary ramps as one trapezoid each
-// (ramp_length), the core in n uniform trapezoids, the end samples a hair inside (as in cloud.frag). Also returns
-// the cumulative optical depth at 1/4, 1/2, 3/4 and 1 of the interval (linear within the segment that holds each).
-float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, out vec4 quarters)
+// Optical depth through the in-cloud interval [a, b] of the ray ro + t dir: n trapezoids on the knots above (uniform
+// core; boundary ramps if `ramps`), the end samples a hair inside (as in cloud.frag). Also returns the cumulative
+// optical depth at 1/4, 1/2, 3/4 and 1 of the interval, each a knot of its own (a segment holding a quarter point
+// is split there), so the opacity map stores sampled values, not interpolations inside a noisy segment.
+float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, out vec4 quarters)
 {
     float len = b - a;
     float nudge = min(1e-3 * len, 0.05);
-    float rl = ramp_length(len, nudge);
-    float x = (len - 2.0 * rl) / float(n);
+    knots kn = make_knots(a, len, nudge, n, 1.0, ramps);
+    int m = knot_count(kn);
     float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge), tau = 0.0;
+    int j = 0;  // next quarter point
     quarters = vec4(0.0);
-    for (int i = rl > 0.0 ? -1 : 0; i < n + (rl > 0.0 ? 1 : 0); i++) {
-        bool last = i == n - (rl > 0.0 ? 0 : 1);
-        float t = i < 0 ? a + rl : last ? b : (i == n - 1 ? b - rl : a + rl + x * float(i + 1));
-        float ts = last ? b - nudge : t;
-        float ke = extinction(ro + dir * ts, ts);
-        float tau_new = tau + (t - t_prev) * 0.5 * (ke_prev + ke);
-        for (int j = 0; j < 3; j++) {
+    for (int i = 1; i <= m; i++) {
+        float t = i == m ? b : knot_t(kn, i);
+        for (int s = 0; s < 3; s++) { // quarter points strictly inside this segment
             float q = a + 0.25 * float(j + 1) * len;
-            if (q > t_prev && q <= t)
-                quarters[j] = mix(tau, tau_new, (q - t_prev) / max(t - t_prev, 1e-9));
+            if (j >= 3 || q >= t - 1e-4 * len)
+                break;
+            float kq = extinction(ro + dir * q, q);
+            tau += (q - t_prev) * 0.5 * (ke_prev + kq);
+            quarters[j] = tau;
+            j++;
+            t_prev = q;
+            ke_prev = kq;
         }
-        tau = tau_new;
+        float ts = i == m ? b - nudge : t;
+        float ke = extinction(ro + dir * ts, ts);
+        tau += (t - t_prev) * 0.5 * (ke_prev + ke);
+        if (j < 3 && abs(a + 0.25 * float(j + 1) * len - t) < 1e-4 * len) { // a knot on the quarter point
+            quarters[j] = tau;
+            j++;
+        }
         t_prev = t;
         ke_prev = ke;
     }

@@ -4,7 +4,7 @@
 // depth peel would find, but exact: the ellipsoids are analytic, so no hull rasterisation, no polygonal depths and no
 // peel passes are needed), and the real density, noise included, is integrated through interval j = the tile this
 // fragment lies in. Output: target 0 (z_entry, z_exit) in metres from the sun plane; target 1: tau at 1/4, 1/2, 3/4
-// and 1 of the interval. SUN_SAMPLES trapezoid segments over the interval's core, one per boundary ramp
+// and 1 of the interval. SUN_SAMPLES trapezoid segments, boundary ramps on their own, quarter points sampled
 // (integrate_interval in density.glsl).
 #include "density.glsl"
 uniform vec3 u_sun_dir, u_sun_right, u_sun_up;
@@ -33,7 +33,7 @@ void main()
         k = next_interval(k, a, b, merged);
     }
     vec4 q;
-    integrate_interval(ro, dir, a, b, SUN_SAMPLES, q);
+    integrate_interval(ro, dir, a, b, SUN_SAMPLES, true, q);
     o_layers = vec4(a, b, 0.0, 0.0);
     o_tau = q;
 }

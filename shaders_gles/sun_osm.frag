@@ -52,13 +52,12 @@ void main()
         // integrate_interval's quadrature, recording tau where a slice depth falls inside a segment
         float len = b - a;
         float nudge = min(1e-3 * len, 0.05);
-        float rl = ramp_length(len, nudge);
-        float x = (len - 2.0 * rl) / float(SUN_SAMPLES);
+        knots kn = make_knots(a, len, nudge, SUN_SAMPLES, 1.0, false);
+        int m = knot_count(kn);
         float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
-        int lo = rl > 0.0 ? -1 : 0, hi = SUN_SAMPLES + (rl > 0.0 ? 1 : 0);
-        for (int i = lo; i < hi; i++) {
-            bool last = i == hi - 1;
-            float t = i < 0 ? a + rl : last ? b : (i == SUN_SAMPLES - 1 ? b - rl : a + rl + x * float(i + 1));
+        for (int i = 1; i <= m; i++) {
+            bool last = i == m;
+            float t = last ? b : knot_t(kn, i);
             float ts = last ? b - nudge : t;
             float ke = extinction(ro + dir * ts, ts);
             float tau_new = tau + (t - t_prev) * 0.5 * (ke_prev + ke);

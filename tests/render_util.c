@@ -30,6 +30,7 @@ int tr_open(tr_ctx *c, const cu_display_backend *be, int w, int h, int linear)
     cu_desc d = {0};
     d.get_proc_address = getproc;
     d.get_proc_user = c;
+    d.data_dir = getenv("CUMULO_DATA_DIR"); /* as the cumulo program: tables from elsewhere than ./data */
     cu_error e;
     if (cu_renderer_create(&c->r, &d, &e)) {
         snprintf(c->err, sizeof c->err, "%s", e.msg);
