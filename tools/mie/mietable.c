@@ -171,7 +171,7 @@ static double rmap_solve(const rmap *m, double k, double x, double u)
 typedef struct {
     double complex *ap, *bp; /* coefficients at the previous node */
     int np;                  /* their count, 0 if there is no previous node */
-    double xp, up;           /* previous node */
+    double xp;               /* previous node */
     double complex *ca, *cb, *cd; /* coefficients at a resonance, and scratch */
     double *pit, *taut;
     double complex *s1f, *s2f, *s1b, *s2b;
@@ -495,10 +495,10 @@ int mt_compute(const mt_params *p, const mt_angles *a, mt_result *r, char *err, 
     }
     for (int i = 0; i < ns; i++) {
         s[i].lambda_nm = p->lambda_min_nm + i * p->dlambda_nm;
-        /* In the bulk every wavelength would sample the same size parameters x_j = j dx, and m changes so little
-         * between neighbours (2.5e-4 per 10 nm) that they would hit the same narrow resonances: the noise would
-         * not average out over the band. Golden-ratio offsets of the grid decorrelate them; each grid is still
-         * uniform in u, so the trapezoid rule keeps its accuracy. A single wavelength gets the midpoint rule. */
+        /* Golden-ratio offsets of each wavelength's grid: without the pole correction (--poles 0) every wavelength
+         * would sample the same size parameters x_j = j dx and, m changing little between neighbours, hit the
+         * same narrow resonances, so their noise would not average out over the band. With the correction they
+         * do not matter; each grid is still uniform in u. A single wavelength gets the midpoint rule. */
         s[i].phase = fmod(0.5 + i * 0.6180339887498949, 1.0);
         s[i].m = p->use_m ? p->m : water_m(s[i].lambda_nm);
         s[i].dsdo = buf + (size_t)i * (size_t)a->nang;

@@ -8,6 +8,7 @@
 
 #include "mie.h"
 #include "mietable.h"
+#include "resonance.h"
 #include "water.h"
 
 #include <math.h>
@@ -335,6 +336,43 @@ static void test_table_chop(void **state)
     free(pt);
 }
 
+/* The pole correction's formula: the trapezoid rule h sum f(u0 + j h) of f = w(u) / ((u - x0)^2 + gamma^2), w a
+ * smooth Gaussian, misses the integral by 2 Re[Res(f, z) E((z - u0)/h)], z = x0 + i gamma, to exponentially small
+ * terms, however narrow the peak is against h. */
+static void test_trap_error(void **state)
+{
+    (void)state;
+    const double sig = 3.0, x0 = 0.37, h = 0.1, u0 = 0.043;
+    static const double gam[3] = {1e-6, 1e-3, 0.05};
+    for (int q = 0; q < 3; q++) {
+        double g = gam[q];
+        /* The integral over [-40, 40]: w(x0) + w'(x0)(u - x0) over the Lorentzian analytically, the remainder
+         * (smooth but for a dip of width gamma and area ~ w'' gamma) by Simpson at 1e-3. */
+        double lo = -40.0, hi = 40.0, w0 = exp(-x0 * x0 / (2 * sig * sig)), w1 = -x0 / (sig * sig) * w0;
+        double ref = w0 / g * (atan((hi - x0) / g) - atan((lo - x0) / g)) +
+                     0.5 * w1 * log(((hi - x0) * (hi - x0) + g * g) / ((lo - x0) * (lo - x0) + g * g));
+        long m = 80000;
+        double step = (hi - lo) / m;
+        for (long j = 0; j <= m; j++) {
+            double u = lo + j * step, d = u - x0;
+            double f = (exp(-u * u / (2 * sig * sig)) - w0 - w1 * d) / (d * d + g * g);
+            double sw = (j == 0 || j == m) ? 1.0 : (j & 1) ? 4.0 : 2.0;
+            ref += sw * step / 3.0 * f;
+        }
+        double trap = 0.0;
+        for (int j = -400; j < 400; j++) { /* u0 + j h covers [-40, 40) */
+            double u = u0 + j * h;
+            trap += h * exp(-u * u / (2 * sig * sig)) / ((u - x0) * (u - x0) + g * g);
+        }
+        double complex z = x0 + I * g;
+        double complex res = cexp(-z * z / (2 * sig * sig)) / (2.0 * I * g);
+        double corr = 2.0 * creal(res * res_trap_error((z - u0) / h));
+        print_message("gamma %g, h %g: trapezoid error %.4e, predicted %.4e, rel residual %.1e\n", g, h, trap - ref,
+                      corr, fabs(trap - corr - ref) / ref);
+        assert_rel(trap - corr, ref, 1e-7);
+    }
+}
+
 static const double conv_theta[] = {0, 0.25, 0.5, 1, 1.5, 2, 2.5, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 14, 16, 18, 20,
                                      30, 60, 90, 120, 130, 140, 150, 160, 170, 175, 178, 179, 180};
 
@@ -446,6 +484,7 @@ int main(void)
         cmocka_unit_test(test_water_index),
         cmocka_unit_test(test_gamma_distribution),
         cmocka_unit_test(test_sphere_integral_hg),
+        cmocka_unit_test(test_trap_error),
         cmocka_unit_test(test_quadrature_convergence),
         cmocka_unit_test(test_band_convergence),
         cmocka_unit_test(test_pole_correction),
