@@ -55,4 +55,28 @@ else
   t_skip mpi_same_results "build/cumulo-slab-mpi or mpirun not available"
 fi
 
+# data/slab_*: every file listed in the manifest's sha256 section matches (regenerate the manifest with gen_tables.sh)
+if [ -f data/slab_MANIFEST.txt ]; then
+  sums=$(sed -n '/^sha256:/,$p' data/slab_MANIFEST.txt | sed 1d | sed 's/^ *//')
+  if [ -n "$sums" ] && bad=$(cd data && printf '%s\n' "$sums" | sha256sum -c --quiet 2>&1); then t_ok data_checksums
+  else t_fail data_checksums "manifest sha256 mismatch: ${bad:-no sha256 lines}"; fi
+else
+  t_fail data_checksums "data/slab_MANIFEST.txt missing"
+fi
+# the renderer loads data/slab_fit_bouthors.txt by (name, group, t_m, node): that key list (every field but the value)
+# must not change, and neither must the log-separable file's
+# (7 thicknesses 25..1600 m, 8 groups, P* on 15 deg nodes, A1/B1/C/D on 10 thetaV nodes, A2/B2 on thetaL 0,30,50,70)
+k=$(awk '!/^#/ { $NF = ""; print }' data/slab_fit_bouthors.txt | sha256sum | cut -d' ' -f1)
+[ "$k" = 1e80eec5b0866507cd7e569631969b2dcefb52eacb394ad95f2516148cc0608e ] && t_ok bouthors_table_layout \
+  || t_fail bouthors_table_layout "key list (name group t_m node) changed: $k"
+k=$(awk '!/^#/ { $NF = ""; print }' data/slab_fit_logsep.txt | sha256sum | cut -d' ' -f1)
+[ "$k" = 7f993a509ea860ae0c7b2bfcc16e6b1d3205f05edb43e22c017d4f805b78f19c ] && t_ok logsep_table_layout \
+  || t_fail logsep_table_layout "key list (name group t_m d/t angle) changed: $k"
+if awk '!/^#/ && $NF !~ /^-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$/ { bad = 1 } END { exit bad }' \
+     data/slab_fit_bouthors.txt data/slab_fit_logsep.txt; then t_ok fit_tables_finite
+else t_fail fit_tables_finite "non-numeric or non-finite value in data/slab_fit_*.txt"; fi
+# the renderer (src/slabmodel.c) takes logarithms of P, A1, A2, C, D: they must be positive (B1, B2 may be any sign)
+if awk '!/^#/ && $1 != "B1" && $1 != "B2" && !($5 > 0) { bad = 1 } END { exit bad }' data/slab_fit_bouthors.txt
+then t_ok bouthors_positive; else t_fail bouthors_positive "non-positive P/A1/A2/C/D in data/slab_fit_bouthors.txt"; fi
+
 t_summary
