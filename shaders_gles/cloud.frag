@@ -114,9 +114,11 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 #if MS_MODE >= 2
 // Multiple scattering (orders 2..16+) leaving the cloud at p toward the eye, per unit sun irradiance: Bouthors' slab
 // model with Kol's simplification (a fixed blur instead of the collector search). Angles per eqs. 3.56-3.57; the
-// scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it).
-float ms_slab(vec3 p, vec3 dir, float mu)
+// scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it). Also returns the opacity
+// the fitted slab has along the view (delta-M), for weighting the interval.
+float ms_slab(vec3 p, vec3 dir, float mu, out float slab_alpha)
 {
+    slab_alpha = 1.0;
     float t, d, scale;
     vec3 n;
 #if MS_MODE == 3
@@ -131,6 +133,7 @@ float ms_slab(vec3 p, vec3 dir, float mu)
     // Kol 3.4.5: seen from below the fitted slab's normal a point at d = 0 would get no light at all (a protruding
     // part lit from the side); its depth is raised to at least t / 10 there. Seen from above, d = 0 is the true exit.
     d = max(d, smoothstep(100.0, 80.0, thv) * 0.1 * t);
+    slab_alpha = 1.0 - exp(-DM_SCALE * t * SLAB_KE_REF / max(abs(dot(dir, n)), 0.05));
     return slab_radiance(1, t, d, thv, thl, degrees(acos(clamp(mu, -1.0, 1.0))));
 }
 #endif
@@ -233,8 +236,14 @@ void main()
             S_prev = S;
         }
 #if MS_MODE >= 2
-        // The interval's multiple scattering, evaluated once at its entry and blended with its opacity (Kol 3.4.4).
-        L += exp(-taup0) * (1.0 - exp(-(taup - taup0))) * vec3(ms_slab(p_entry, dir, mu));
+        // The interval's multiple scattering, evaluated once at its entry (Kol 3.4.4). C is already the radiance
+        // leaving the fitted slab, so it is weighted by the interval's opacity relative to the slab's own along the
+        // view (1 for a ray that crosses the cloud as it crosses the slab; small where it grazes a thin edge). Kol
+        // blends with the interval's opacity alone, which takes the slab's thickness into account twice (-11 % at
+        // tau 4 seen from above).
+        float slab_alpha;
+        float ms = ms_slab(p_entry, dir, mu, slab_alpha);
+        L += exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0) * vec3(ms);
 #endif
         // Sky and ground light: an isotropic field of the environment's mean radiance J in the cloud. A uniform
         // source in a non-absorbing medium seen through optical depth tau gives J (1 - e^-tau): exact for a uniform

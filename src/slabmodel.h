@@ -39,7 +39,7 @@ typedef struct cu_slab_transport {
 int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr, cu_error *err);
 
 /* The transport of the tables committed in data/ (which phase function tools/slab/gen_tables.sh used for them). */
-#define CU_SLAB_TABLES_MIE 0
+#define CU_SLAB_TABLES_MIE 1
 int cu_slab_committed_transport(const char *data_dir, cu_slab_transport *tr, cu_error *err);
 
 /* Multiply scattered radiance I/F_sun (sr^-1) at depth d (m, below the lit face) in a slab of thickness t (m), both
