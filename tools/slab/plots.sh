@@ -47,11 +47,12 @@ for g in 1 2 3 4 5 6 7 8; do
   awk -v g=$g '$1==g && $4==0 && $5==0 {print $3, $7, $8}' "$TAB" >"$W/down_$g.txt"
   awk -v g=$g '$1==g && $4==180 && $5==0 {print $3, $7, $8}' "$TAB" >"$W/up_$g.txt"
 done
-info=$(sed -n 2p "$TAB" | sed 's/^# //; s/_/ /g')
+info=$(sed -n 2p "$TAB" | awk '{ for (i = 2; i <= NF; i++) if ($i ~ /^(tau|thickness_m|mu0|f|photons)=/) printf "%s ", $i }')
+case "$(sed -n 2p "$TAB")" in *phase=mie:*) info="$info (chopped Mie)" ;; esac
 gnuplot <<GP
 set terminal pngcairo size 1100,500 font "sans,10"
 set output "docs/slab_groups_vs_depth.png"
-set multiplot layout 1,2 title "C(n, t, d) per scattering-order group: $info"
+set multiplot layout 1,2 title "C(n, t, d) per scattering-order group: $info" noenhanced
 set logscale y
 set xlabel "viewpoint depth d (m)"
 set ylabel "C = I / F_{sun} (sr^{-1})"
