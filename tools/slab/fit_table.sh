@@ -12,6 +12,6 @@ for g in 1 2 3 4 5-6 7-9 10-15 16+; do
   nz=$(awk -v g="$g" '$1 == g && NF >= 8 { print $6, $3 }' "$D/slab_fit_report_bouthors.txt" | sort -g |
        awk '{ v[NR] = $1; w[NR] = $2; tot += $2 } END { c = 0; for (i = 1; i <= NR; i++) { c += w[i]; if (c >= tot / 2) { print v[i]; exit } } }')
   echo "$g $b $nz $h $l" | awk '{ bm = $3 + 0; lm = $8 + 0
-    printf "| %s | %s | %.3f | %s%.3f%s / %.3f | %.3f / %.3f | %s%.3f%s / %.3f |\n", $1, $2, $5, (bm <= lm ? "**" : ""), $3,
+    printf "| %s | %s | %.4f | %s%.3f%s / %.3f | %.3f / %.3f | %s%.3f%s / %.3f |\n", $1, $2, $5, (bm <= lm ? "**" : ""), $3,
       (bm <= lm ? "**" : ""), $4, $6, $7, (lm < bm ? "**" : ""), $8, (lm < bm ? "**" : ""), $9 }'
 done
