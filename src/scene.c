@@ -342,6 +342,18 @@ int cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t le
     int lineno = 0;
     int any_content = 0;
 
+    /* A binary file is reported as binary, wherever its first control byte sits, not as whatever syntax error its
+     * first line happens to make. */
+    for (size_t i = 0, ln = 1, col = 1; i < len; i++, col++) {
+        unsigned char c = (unsigned char)text[i];
+        if (c == '\n') {
+            ln++;
+            col = 0;
+        } else if (c == 0 || (c < 32 && c != '\t' && c != '\r') || c == 127) {
+            free(s);
+            return fail(err, "%s:%d:%d: not a text file (byte 0x%02x)", name, (int)ln, (int)col, c);
+        }
+    }
     while (pos < len) {
         lineno++;
         size_t start = pos;
