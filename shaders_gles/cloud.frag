@@ -86,8 +86,11 @@ vec3 segment_source(float dt, vec3 S0, vec3 S1)
     for (int c = 0; c < 3; c++) {
         float a = S0[c], b1 = S1[c];
         if (a > 1e-30 && b1 > 1e-30) {
-            float x = dt + log(a / b1);
-            r[c] = abs(x) > 1e-4 ? a * dt * (1.0 - exp(-x)) / x : a * dt * (1.0 - 0.5 * x);
+            // S0 dt (1 - e^-x) / x with S0 e^-x = S1 e^-dt, written so that nothing overflows: a steeply rising
+            // source (x << 0) would make e^-x overflow, and log(a / b1) underflow (found as NaN by
+            // test_segment_integration)
+            float x = dt + (log(a) - log(b1));
+            r[c] = abs(x) > 1e-3 ? dt * (a - b1 * exp(-dt)) / x : a * dt * (1.0 - 0.5 * x + x * x / 6.0);
         } else {
             r[c] = 0.5 * (a + b1) * e;
         }

@@ -125,7 +125,10 @@ float knot_t(knots k, int i)
     if (k.nr > 0 && i >= n - k.nr)
         return k.a + k.len - k.rl * float(n - i) / float(k.nr);
     float j = float(i - k.nr), core = k.len - 2.0 * k.rl;
-    float f = k.r > 1.0001 ? (pow(k.r, j) - 1.0) / (pow(k.r, float(k.nc)) - 1.0) : j / float(k.nc);
+    // (r^j - 1) / (r^nc - 1), written as r^(j - nc) (1 - r^-j) / (1 - r^-nc): r^nc overflows fp32 for 48 segments
+    // per chord over several merged chords (1.6^192), which made NaN
+    float lr = log(max(k.r, 1.0)), nc = float(k.nc);
+    float f = k.r > 1.0001 ? exp((j - nc) * lr) * (1.0 - exp(-j * lr)) / (1.0 - exp(-nc * lr)) : j / nc;
     return k.a + k.rl + core * f;
 }
 
