@@ -3,33 +3,57 @@
 # compare as ratios: each shadow method and each MS mode at 640x480 on the 8-ellipsoid benchmark cloud, against the
 # cheapest baseline (light.shadow=front, ms.mode=none: there is no shadow-free mode), and the sun pass (opacity map +
 # slab maps) per map size and per layer count, from frames that redo it (--sun-every-frame) minus frames that do
-# not. Writes build/bench/light.csv and build/bench/light.md (the README's table).
+# not. ROUNDS rounds run every configuration in turn (interleaved, so load drifts hit all alike); the table takes
+# each configuration's median over the rounds. Writes build/bench/light.csv and build/bench/light.md.
 set -eu
 C=${CUMULO:-build/cumulo}
-FRAMES=${FRAMES:-15}
+FRAMES=${FRAMES:-8}
+ROUNDS=${ROUNDS:-3}
 export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=${LP_NUM_THREADS:-2}
 mkdir -p build/bench
 CSV=build/bench/light.csv
 rm -f "$CSV"
 S=scenes/bench_e8.scene
-b() { "$C" bench "$S" --frames "$FRAMES" --warmup 3 --csv "$CSV" "$@" | grep '^\['; }
-b --set light.shadow=front --set ms.mode=none
-for sh in front peel osm fom; do b --set light.shadow=$sh --set ms.mode=none; done
-for ms in octaves slab collector; do b --set light.shadow=peel --set ms.mode=$ms; done
-for m in 64 128 256; do
-  b --set quality.sun_map_size=$m
-  b --set quality.sun_map_size=$m --sun-every-frame
-done
-for j in 1 2 3; do
-  b --set light.sun_intervals=$j
-  b --set light.sun_intervals=$j --sun-every-frame
+configs='light.shadow=front,ms.mode=none
+light.shadow=peel,ms.mode=none
+light.shadow=osm,ms.mode=none
+light.shadow=fom,ms.mode=none
+light.shadow=peel,ms.mode=octaves
+light.shadow=peel,ms.mode=slab
+light.shadow=peel,ms.mode=collector
+light.shadow=peel,quality.sun_map_size=64
+light.shadow=peel,quality.sun_map_size=64,+sun
+light.shadow=peel,quality.sun_map_size=128
+light.shadow=peel,quality.sun_map_size=128,+sun
+light.shadow=peel,quality.sun_map_size=256
+light.shadow=peel,quality.sun_map_size=256,+sun
+light.shadow=peel,light.sun_intervals=1
+light.shadow=peel,light.sun_intervals=1,+sun
+light.shadow=peel,light.sun_intervals=3
+light.shadow=peel,light.sun_intervals=3,+sun'
+r=0
+while [ $r -lt "$ROUNDS" ]; do
+  r=$((r + 1))
+  echo "$configs" | while IFS= read -r cfg; do
+    set --
+    for kv in $(echo "$cfg" | tr ',' ' '); do
+      if [ "$kv" = "+sun" ]; then set -- "$@" --sun-every-frame; else set -- "$@" --set "$kv"; fi
+    done
+    "$C" bench "$S" --frames "$FRAMES" --warmup 2 --csv "$CSV" "$@" | grep '^\[' | sed "s/^/round $r: /"
+  done
 done
 uptime | sed 's/^/load while measuring:/'
-awk -F, 'NR > 1 { n++; ms[n] = $4; opt[n] = $2; sun[n] = ($0 ~ /sun-every-frame|sun_every/) }
+# median over rounds per options string; ratio to the first configuration
+awk -F, 'NR > 1 { o = $2; if (!(o in n)) order[++k] = o; v[o, ++n[o]] = $4 }
   END {
-    base = ms[1]
+    for (i = 1; i <= k; i++) {
+      o = order[i]; m = n[o]
+      for (a = 1; a <= m; a++) for (b = a + 1; b <= m; b++) if (v[o, b] < v[o, a]) { t = v[o, a]; v[o, a] = v[o, b]; v[o, b] = t }
+      med[o] = (m % 2) ? v[o, (m + 1) / 2] : (v[o, m / 2] + v[o, m / 2 + 1]) / 2
+    }
+    base = med[order[1]]
     print "| settings (bench_e8.scene, 640x480) | median frame (ms) | ratio to front + no MS |"
     print "| --- | --- | --- |"
-    for (i = 2; i <= n; i++) { o = opt[i]; sub(/^size=640x480:?/, "", o); printf "| %s | %.1f | %.2f |\n", o, ms[i], ms[i] / base }
+    for (i = 1; i <= k; i++) { o = order[i]; s = o; sub(/^size=640x480:?/, "", s); printf "| %s | %.1f | %.2f |\n", s, med[o], med[o] / base }
   }' "$CSV" > build/bench/light.md
 cat build/bench/light.md
