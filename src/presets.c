@@ -5,16 +5,16 @@
 static const char *const SETTINGS[CU_PRESET_COUNT] = {
     /* high: the defaults */
     "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
-    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
-    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
+    "light.sun_samples=32;ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
     /* medium */
     "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
-    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
-    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
+    "light.sun_samples=32;ms.mode=none;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
     /* low */
-    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
-    "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;light.sun_samples=32;"
-    "ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    "quality.segments=2;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
+    "quality.noise_octaves=4;quality.sun_map_size=128;light.shadow=front;light.sun_intervals=3;"
+    "light.sun_samples=32;ms.mode=none;ms.blur=100;ms.sky_light=off;quality.integration=kol",
 };
 
 const char *cu_preset_settings(cu_preset p)

@@ -36,4 +36,17 @@ t_expect "unknown back end" 1 "unknown back end 'vulkan'" -- $C render scenes/cu
 t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
 t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
 t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
+# The presets compiled into the engine (src/presets.c) are the ones the sweep chose (docs/sweep_presets.txt): every
+# key=value of each preset's --set line must appear in that preset's entry, except cloud.phase (a preset never changes
+# the scene's phase function; the sweep lists it because it is one of its knobs).
+bad=""
+for p in high medium low; do
+  want=$(grep "^$p:" docs/sweep_presets.txt | sed 's/ *#.*//; s/^[a-z]*: *//; s/--set //g')
+  have=$(awk -v p="$p" '/^    \/\* / { cur = $2; sub(/:$/, "", cur) } cur == p && /"/ { gsub(/^ *"|" *,? *$/, ""); printf "%s", $0 }' src/presets.c | tr ';' ' ')
+  [ -n "$want" ] || bad="$bad $p:missing-in-docs"
+  for kv in $want; do case "$kv" in cloud.phase=*) continue ;; esac; case " $have " in *" $kv "*) ;; *) bad="$bad $p:$kv" ;; esac; done
+done
+if [ -z "$bad" ]; then t_ok "presets in src/presets.c match docs/sweep_presets.txt"
+else t_fail "presets in src/presets.c match docs/sweep_presets.txt" "differ:$bad"; fi
+
 t_summary

@@ -159,6 +159,57 @@ static void test_bad_set(void **st)
     cu_scene_free(s);
 }
 
+/* The knob fields a preset may set, for comparing scenes. */
+static void knobs(const cu_scene *s, double v[12])
+{
+    double k[12] = {s->segments, s->segment_ratio, s->hull_tessellation, s->max_intervals, s->noise_octaves,
+                    s->sun_map_size, s->shadow, s->sun_intervals, s->sun_samples, s->ms_mode, s->ms_blur_m,
+                    s->integration};
+    memcpy(v, k, sizeof k);
+}
+
+static void test_presets(void **st)
+{
+    (void)st;
+    cu_scene *s, *d;
+    cu_error e;
+    double a[12], b[12];
+    assert_int_equal(parse(MIN_SCENE, &d, &e), 0);
+    /* high is the defaults */
+    assert_int_equal(parse(MIN_SCENE "[quality]\npreset = high\n", &s, &e), 0);
+    knobs(s, a);
+    knobs(d, b);
+    assert_memory_equal(a, b, sizeof a);
+    cu_scene_free(s);
+    /* medium and low change something (they come from the sweep: src/presets.c) */
+    for (int p = 0; p < 2; p++) {
+        assert_int_equal(parse(p ? MIN_SCENE "[quality]\npreset = low\n" : MIN_SCENE "[quality]\npreset = medium\n",
+                               &s, &e), 0);
+        knobs(s, a);
+        assert_true(memcmp(a, b, sizeof a) != 0);
+        /* a later --set of the preset replaces it completely: back to high is back to the defaults */
+        assert_int_equal(cu_scene_set(s, "quality.preset=high", &e), 0);
+        knobs(s, a);
+        assert_memory_equal(a, b, sizeof a);
+        cu_scene_free(s);
+    }
+    /* keys given in the file win, before or after the preset line, and so do earlier --set values */
+    assert_int_equal(parse(MIN_SCENE "[quality]\nsegments = 7\npreset = low\n", &s, &e), 0);
+    assert_int_equal(s->segments, 7);
+    cu_scene_free(s);
+    assert_int_equal(parse(MIN_SCENE "[quality]\npreset = low\nsegments = 7\n", &s, &e), 0);
+    assert_int_equal(s->segments, 7);
+    assert_int_equal(cu_scene_set(s, "light.shadow=fom", &e), 0);
+    assert_int_equal(cu_scene_set(s, "quality.preset=medium", &e), 0);
+    assert_int_equal(s->segments, 7);
+    assert_int_equal(s->shadow, CU_SHADOW_FOM);
+    cu_scene_free(s);
+    /* a bad name is an error with its place */
+    assert_int_not_equal(parse(MIN_SCENE "[quality]\npreset = ultra\n", &s, &e), 0);
+    assert_non_null(strstr(e.msg, "t.scene:11:10"));
+    cu_scene_free(d);
+}
+
 static void test_missing_file(void **st)
 {
     (void)st;
@@ -174,7 +225,7 @@ int main(void)
         cmocka_unit_test(test_good_minimal_and_defaults), cmocka_unit_test(test_good_default_scene_file),
         cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
-        cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_presets),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
