@@ -441,10 +441,12 @@ static void test_alternative_renders(void **st)
     double front = render_psnr(CONCAVE_SCENE, "light.shadow=front");
     double osm = render_psnr(CONCAVE_SCENE, "light.shadow=osm");
     double fom = render_psnr(CONCAVE_SCENE, "light.shadow=fom");
-    /* measured: front 54.8 dB, osm 65.2 dB, fom 60.3 dB (64 x 48, tone-mapped): both alternatives light the
+    /* measured: front 55.6 dB, osm 61.4 dB, fom 60.3 dB (64 x 48, tone-mapped; with the log-linear segment
+     * sources of cloud.frag, which follow the sun's optical depth more closely than the old segment mean and so
+     * show the methods' differences more: before them osm was 65.2 and front 54.8): both alternatives light the
      * concave scene much like peel, and clearly closer to it than the front-depth estimate */
-    assert_true(osm > front + 7.0);
-    assert_true(fom > front + 4.0);
+    assert_true(osm > front + 4.5);
+    assert_true(fom > front + 3.5);
 }
 
 static void test_bookkeeping(void **st)
