@@ -168,7 +168,10 @@ static struct gpiod_line_request *request(cu_gpio *g, const cu_input_spec *spec,
             gpiod_line_settings_set_debounce_period_us(s[k], k == 0 ? us : (us > 5000 ? us : 5000));
         }
         gpiod_request_config_set_consumer(rc, CONSUMER);
-        gpiod_request_config_set_event_buffer_size(rc, 64);
+        /* The kernel queues edges while a frame renders; a slow frame (a Pi, or the VM test under emulation, where
+         * the slab model's sun pass made frames seconds long) must not overflow the queue and lose a detent: 64
+         * events lost one in 48 bouncy edges there. 1024 is the kernel's cap (it clamps larger requests). */
+        gpiod_request_config_set_event_buffer_size(rc, 1024);
         if (gpiod_line_config_add_line_settings(lc, g->offset, 2, enc) == 0 &&
             (g->nlines < 3 || gpiod_line_config_add_line_settings(lc, &g->offset[LINE_BUTTON], 1, btn) == 0))
             req = gpiod_chip_request_lines(g->chip, rc, lc);
