@@ -41,7 +41,10 @@ bccw() { _k=0; while [ $_k -lt $1 ]; do bpull 1 down up; bpull 0 down up; bpull 
                _k=$((_k + 1)); done; }
 
 rm -f $F/gpio.fifo; mkfifo $F/gpio.fifo
-$C run $S --platform headless --size 64x48 --accel 0 --step 1 \
+# quality.preset=medium (no multiple scattering): frames as short as the knob tests were written for. With the slab
+# model's sun pass a frame under emulation takes seconds, and then the bouncy ccw sequence loses one detent: a real
+# decoder bug with slow frames, left open (session note of 2026-11-22), not what this test is about.
+$C run $S --platform headless --size 64x48 --accel 0 --step 1 --set quality.preset=medium \
    --input "gpio:chip=$chip,a=ENC_A,b=ENC_B,button=ENC_SW" --input stdin <$F/gpio.fifo >$OUT/gpio.out \
    2>$OUT/gpio.err &
 pid=$!
