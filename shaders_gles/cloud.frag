@@ -5,14 +5,19 @@
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
-// inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl).
+// inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
+// model's energy closure, src/energy.c: sunlight terms apart instead of a colour).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
 // but they are a few multiplies per sample; the cost is not worth a second precision domain.
+#ifndef ENERGY_PASS
+#define ENERGY_PASS 0
+#endif
 #include "density.glsl"
 #include "sunmap.glsl"
 #if MS_MODE >= 2
+uniform float u_ms_gain;                // energy closure (src/energy.c): <= 1, scales the slab model's radiance
 #include "ms_slab.glsl"
 uniform sampler2D u_slab_a, u_slab_n;   // the slab map from the sun (slab_map.frag), mipmapped
 uniform float u_slab_lod;               // its level for the fixed blur ms.blur (metres -> texels -> log2)
@@ -189,6 +194,7 @@ void main()
     float taup = 0.0;     // the same with the delta-M extinction, for scattered light on its way to the eye
     vec3 L = vec3(0.0);   // scattered radiance / sun irradiance, attenuated to the eye
     vec3 amb = vec3(0.0); // sky and ground light
+    float Lms = 0.0;      // the slab model's multiple scattering (grey), attenuated to the eye
     int k = 0, intervals = 0;
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
@@ -246,7 +252,7 @@ void main()
         // tau 4 seen from above).
         float slab_alpha;
         float ms = ms_slab(p_entry, dir, mu, slab_alpha);
-        L += exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0) * vec3(ms);
+        Lms += exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0) * ms;
 #endif
         // Sky and ground light: an isotropic field of the environment's mean radiance J in the cloud. A uniform
         // source in a non-absorbing medium seen through optical depth tau gives J (1 - e^-tau): exact for a uniform
@@ -259,7 +265,7 @@ void main()
 #endif
         amb += exp(-tau0) * (1.0 - exp(-(tau - tau0))) * mix(u_ground_rad, u_sky_rad, w_sky);
     }
-#if PHASE_PEAK
+#if PHASE_PEAK && !ENERGY_PASS
     // The removed peak (Kol eqs. 3.66-3.69): light scattered into the forward peak and still on the beam. With the
     // delta-M extinction (1 - f) k_e of the chopped medium that is e^(-(1-f) tau) - e^(-tau), spread over angles as
     // P_p / f. Its thin limit is P_p tau, single scattering of the peak, as it must be; Kol's printed form
@@ -269,5 +275,14 @@ void main()
         L += pp / max(u_peak_f, vec3(1e-6)) * (exp(-(1.0 - u_peak_f) * tau) - vec3(exp(-tau)));
 #endif
     float alpha = 1.0 - exp(-tau);
+#if ENERGY_PASS
+    // Per unit sun irradiance, without the forward peak: single scattering, multiple scattering before the
+    // closure's gain, and the optical depth along the view (seen from the sun: the column's).
+    o_color = vec4(L.g, Lms, tau, 1.0);
+    return;
+#endif
+#if MS_MODE >= 2
+    L += vec3(u_ms_gain * Lms);
+#endif
     o_color = vec4(u_sun_irr * L + amb, alpha);
 }

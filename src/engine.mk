@@ -1,5 +1,5 @@
 # src/: libcumulo (the engine), the embedded shaders, and the `cumulo` program.
-LIB_SRCS := src/scene.c src/noise.c src/ellipsoid.c src/density.c src/sunmap.c src/phase.c src/sky.c src/gl.c src/renderer.c \
+LIB_SRCS := src/scene.c src/noise.c src/ellipsoid.c src/density.c src/sunmap.c src/phase.c src/sky.c src/gl.c src/renderer.c src/energy.c \
             src/slabmodel.c src/slabmap.c src/collector.c src/presets.c
 SHADERS  := $(sort $(wildcard shaders_gles/*.vert shaders_gles/*.frag shaders_gles/*.glsl))
 LIB_OBJS := $(LIB_SRCS:%.c=$(B)/obj/%.o) $(B)/obj/gen/shaders.o

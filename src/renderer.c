@@ -2,6 +2,7 @@
  * hull meshes) and the frame: sun pass, sky pass, depth pre-pass, cloud pass (GL_EQUAL), tone map. */
 #include "renderer.h"
 #include "collector.h"
+#include "energy.h"
 #include "slabmap.h"
 #include "sunmap.h"
 #include <stdarg.h>
@@ -114,6 +115,7 @@ static void delete_programs(cu_renderer *r)
 static void delete_scene_objects(cu_renderer *r)
 {
     cu_gl *gl = &r->gl;
+    cu_energy_delete(r);
     delete_programs(r);
     cu_slab_delete(r);
     GLuint tex[] = {r->noise_tex, r->phase_tex, r->sun_tex, r->hdr_tex, r->sun_layers_tex, r->sun_tau_tex};
@@ -187,6 +189,7 @@ static int upload_phase(cu_renderer *r, cu_error *err)
 
     for (int c = 0; c < 3; c++)
         r->peak_f[c] = t.f[c];
+    cu_energy_phase_weights(r, &t);
     r->cloud.ke = cu_phase_table_extinction(&t, &r->scene); /* the table's sigma_ext wins (DESIGN.md) */
     float *rgba = calloc(4 * 2 * (size_t)t.n, sizeof(float));
     if (!rgba) {
@@ -299,6 +302,7 @@ static int build_programs(cu_renderer *r, cu_error *err)
         !(r->prog_depth = hull_program(r, "depth.frag", hull_defs, err)) ||
         !(r->prog_cloud = hull_program(r, "cloud.frag", hull_defs, err)) ||
         !(r->prog_cloud_fs = cu_gl_program(&r->gl, "fullscreen.vert", "cloud.frag", fs_defs, err)) ||
+        cu_energy_init(r, fs_defs, err) ||
         !(r->prog_sky = cu_gl_program(&r->gl, "fullscreen.vert", "sky.frag", fs_defs, err)) ||
         !(r->prog_tonemap = cu_gl_program(&r->gl, "fullscreen.vert", "tonemap.frag", fs_defs, err)) ||
         !(r->prog_copy = cu_gl_program(&r->gl, "fullscreen.vert", "tonemap.frag", lin, err)))
@@ -428,6 +432,11 @@ int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg
     cu_sky_compute(&r->sky, &r->scene);
     r->sun_dirty = 1;
     return 0;
+}
+
+double cu_renderer_ms_gain(const cu_renderer *r)
+{
+    return r->ms_gain;
 }
 
 void cu_renderer_get_sun(const cu_renderer *r, double *el, double *az)
@@ -623,7 +632,7 @@ static int camera_inside_hull(const cu_renderer *r, vec3 cam, double znear)
     return 0;
 }
 
-static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, const float *inv_vp)
+void cu_set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, const float *inv_vp)
 {
     cu_gl *gl = &r->gl;
     const cu_scene *s = &r->scene;
@@ -649,6 +658,22 @@ static void set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *
     gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
     gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
                   (float)r->peak_f[2]);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_gain"), (float)r->ms_gain);
+}
+
+void cu_bind_cloud_textures(cu_renderer *r)
+{
+    cu_gl *gl = &r->gl;
+    gl->ActiveTexture(GL_TEXTURE0);
+    gl->BindTexture(GL_TEXTURE_3D, r->noise_tex);
+    gl->ActiveTexture(GL_TEXTURE1);
+    gl->BindTexture(GL_TEXTURE_2D, r->phase_tex);
+    gl->ActiveTexture(GL_TEXTURE2);
+    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_layers_tex : r->sun_tex);
+    gl->ActiveTexture(GL_TEXTURE3);
+    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_tau_tex : 0);
+    gl->ActiveTexture(GL_TEXTURE0);
+    cu_slab_bind(r);
 }
 
 int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
@@ -663,8 +688,11 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     if (ensure_hdr(r, f->width, f->height, f->linear, err))
         return 1;
-    if (r->sun_dirty)
+    if (r->sun_dirty) {
         sun_pass(r);
+        cu_bind_cloud_textures(r);
+        cu_energy_update(r); /* the closure's views need the new sun and slab maps */
+    }
 
     /* Camera in cloud-local coordinates: the big world offset is removed in double precision on the CPU. */
     vec3 cam = v3_sub(v3_from(s->cam_pos), r->cloud.origin);
@@ -723,16 +751,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
 
     /* Cloud: textures. */
-    gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_3D, r->noise_tex);
-    gl->ActiveTexture(GL_TEXTURE1);
-    gl->BindTexture(GL_TEXTURE_2D, r->phase_tex);
-    gl->ActiveTexture(GL_TEXTURE2);
-    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_layers_tex : r->sun_tex);
-    gl->ActiveTexture(GL_TEXTURE3);
-    gl->BindTexture(GL_TEXTURE_2D, r->shadow == CU_SHADOW_PEEL ? r->sun_tau_tex : 0);
-    gl->ActiveTexture(GL_TEXTURE0);
-    cu_slab_bind(r);
+    cu_bind_cloud_textures(r);
 
     int inside = camera_inside_hull(r, cam, znear);
     if (r->cloud.ke > 0) { /* zero density cannot change a pixel: skip the cloud passes */
@@ -740,7 +759,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied over the sky */
         if (inside) {
             gl->Disable(GL_DEPTH_TEST);
-            set_cloud_uniforms(r, r->prog_cloud_fs, cam, vp, inv_vp);
+            cu_set_cloud_uniforms(r, r->prog_cloud_fs, cam, vp, inv_vp);
             gl->BindVertexArray(r->empty_vao);
             gl->DrawArrays(GL_TRIANGLES, 0, 3);
         } else {
@@ -764,7 +783,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
             gl->Enable(GL_STENCIL_TEST);
             gl->StencilFunc(GL_EQUAL, 0, 0xff);
             gl->StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-            set_cloud_uniforms(r, r->prog_cloud, cam, vp, inv_vp);
+            cu_set_cloud_uniforms(r, r->prog_cloud, cam, vp, inv_vp);
             gl->DrawElementsInstanced(GL_TRIANGLES, r->hull_indices, GL_UNSIGNED_SHORT, 0, r->cloud.n);
             gl->Disable(GL_STENCIL_TEST);
             gl->DepthMask(GL_TRUE);

@@ -51,6 +51,11 @@ struct cu_renderer {
 
     GLuint prog_sun, prog_sun_opacity, prog_slab_map, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
 
+    GLuint prog_energy, energy_tex, energy_fbo; /* the slab model's energy closure (energy.c) */
+    double ms_gain;                    /* its gain on multiple scattering, <= 1 */
+    double energy_ss_w[8];             /* its weights for single scattering per band of angles (energy.c) */
+    double energy_in, energy_ss, energy_ms, energy_ms_budget; /* its last powers (m^2 x sun irradiance):
+                                          intercepted (delta-M), single, multiple, and what multiple may carry */
     GLuint hdr_fbo, hdr_tex, hdr_depth;
     int hdr_w, hdr_h;
     GLenum hdr_format;
@@ -59,4 +64,8 @@ struct cu_renderer {
 void cu_log(const cu_renderer *r, cu_log_level level, const char *fmt, ...);
 /* Uniforms of density.glsl (ellipsoids, extinction, boundary, noise on texture unit 0). */
 void cu_set_density_uniforms(cu_renderer *r, GLuint p);
+/* Uniforms of cloud.frag for a camera at `cam` (cloud-local) with view-projection vp and its inverse. */
+void cu_set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, const float *inv_vp);
+/* Binds the cloud pass's textures (noise, phase, sun maps, slab maps) to their units. */
+void cu_bind_cloud_textures(cu_renderer *r);
 #endif

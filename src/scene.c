@@ -84,6 +84,7 @@ static const key_def keys[] = {
     {"ms", "sky_light", K_ENUM, 1, S(sky_light), 0, 0, 0, bool_names, ""},
     {"ms", "blur", K_DOUBLE, 1, S(ms_blur_m), 0, 1e6, 1, NULL, "m"},
     {"ms", "iterations", K_INT, 1, S(ms_iterations), 1, 32, 0, NULL, ""},
+    {"ms", "closure", K_ENUM, 1, S(ms_closure), 0, 0, 0, bool_names, ""},
 };
 #undef S
 #undef E
@@ -127,6 +128,7 @@ void cu_scene_defaults(cu_scene *s)
     s->ms_mode = CU_MS_SLAB;
     s->ms_blur_m = 200;
     s->ms_iterations = 10;
+    s->ms_closure = 1;
     s->ms_octaves = 4;
     s->ms_a = 0.5;
     s->ms_b = 0.5;

@@ -127,9 +127,26 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
                     ss += s1 * mu * dw / mu0;
                 }
             double avail = 1 - exp(-tau / mu0) - ss;
+            if (il == 0)
+                m->ms_avail[k] = fmax(avail, 0.0);
             if (ms > avail && avail > 0)
                 m->kappa[k][il] = avail / ms;
         }
+}
+
+double cu_slab_model_ms_available(const cu_slab_model *m, double t)
+{
+    if (!(t > 0) || m->nt < 1)
+        return 0;
+    if (t <= m->t[0])
+        return m->ms_avail[0] * (t / m->t[0]) * (t / m->t[0]);
+    if (t >= m->t[m->nt - 1])
+        return m->ms_avail[m->nt - 1];
+    int k = 0;
+    while (k + 2 < m->nt && t > m->t[k + 1])
+        k++;
+    double w = log(t / m->t[k]) / log(m->t[k + 1] / m->t[k]);
+    return m->ms_avail[k] + w * (m->ms_avail[k + 1] - m->ms_avail[k]);
 }
 
 /* Storage for one parsed value: which field, group, thickness node and angle node. */

@@ -1,0 +1,221 @@
+/* src/energy.c: the slab model's energy closure.
+ *
+ * Why: the slab model is local. Each point of a cloud is lit as if it lay in an infinite slab fitted around it, so a
+ * finite cloud can send out more light than it intercepts: light that leaves a real cloud through its sides is also
+ * counted at its faces, and the blurred slab maps light the flanks as if they faced the sun. A sphere of optical
+ * diameter 69 (tests/test_ms.c) scattered 1.06 times the sunlight it intercepts with ms.blur = 200 m, 2.1 times with
+ * 800 m and 1.9 times with the collector search; scenes/cumulus.scene 1.6 times (measured with 100 directions).
+ *
+ * What: when the sun or the clouds change, the cloud's sunlit terms are rendered small (EN_SIZE pixels square,
+ * cloud.frag with ENERGY_PASS) from EN_VIEWS directions in bands of the scattering angle about the sun. Radiance
+ * times pixel footprint summed over a view is the radiant intensity toward that direction; each view stands for its
+ * cell of the sphere of directions:
+ *   - multiple scattering (P_ms): intensity x the cell's solid angle;
+ *   - single scattering (P_ss): the intensity is the phase function P~(Theta) times a factor smooth in direction, so
+ *     it is weighted by the integral of P~ over the cell over P~ at the view (a plain rule put the forward lobe's
+ *     peak on a whole cell: +25 % for the thin layer of scenes/glory.scene);
+ *   - from the sun (the view at Theta = 180 deg), per column of optical depth tau: what the chopped medium
+ *     intercepts, 1 - e^-(1-f) tau (P_in), and what a slab of that optical depth lit straight on leaves to orders
+ *     2+ (B_ms, the slab tables' own budget: cu_slab_model_ms_available).
+ * Multiple scattering is scaled by gain = min(1, B_ms / P_ms, (P_in - P_ss) / P_ms): the column budget alone let a
+ * sphere's total exceed P_in by 1.6 % (its single scattering is larger than a slab's), the total alone would let
+ * errors of P_ss decide. A cloud within both budgets is left alone. The forward peak is left out on both sides (its
+ * energy is exact by construction, cloud.frag). One gain per scene: a field of clouds shares it.
+ *
+ * Cost: EN_VIEWS x 24 x 24 = 22k cloud fragments and one read-back, only when the sun pass is redone. */
+#include "energy.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define EN_SIZE 24
+#define EN_BANDS 8
+#define EN_VIEWS 38
+#define EN_DIST 64.0 /* camera distance in bounding radii: rays parallel to 1/64 rad, footprints equal to 1.6 % */
+/* bands of the scattering angle (degrees) and views per band: a cap at each pole, six azimuths between */
+static const double BAND_EDGE[EN_BANDS + 1] = {0, 15, 40, 65, 90, 115, 140, 165, 180};
+static const int BAND_NPHI[EN_BANDS] = {1, 6, 6, 6, 6, 6, 6, 1};
+typedef char band_views_add_up[1 + 6 * 6 + 1 == EN_VIEWS ? 1 : -1];
+typedef char band_weights_fit[EN_BANDS <= (int)(sizeof(((cu_renderer *)0)->energy_ss_w) / sizeof(double)) ? 1 : -1];
+
+static double band_node(int b) /* the view's scattering angle in band b, radians: the poles, else mid-cosine */
+{
+    if (b == 0)
+        return 0;
+    if (b == EN_BANDS - 1)
+        return CU_PI;
+    double m0 = cos(BAND_EDGE[b] * CU_PI / 180), m1 = cos(BAND_EDGE[b + 1] * CU_PI / 180);
+    return acos(0.5 * (m0 + m1));
+}
+
+void cu_energy_phase_weights(cu_renderer *r, const cu_phase_table *t)
+{
+    /* trapezoids of P~ sin(Theta) over the table's grid (0.088 deg), cut at the band edges */
+    for (int b = 0; b < EN_BANDS; b++) {
+        double a = BAND_EDGE[b] * CU_PI / 180, z = BAND_EDGE[b + 1] * CU_PI / 180, h = CU_PI / (t->n - 1), sum = 0;
+        double prev_x = a, prev_f = 0;
+        for (int i = 0; i <= t->n; i++) {
+            double x = i < t->n ? i * h : z;
+            if (x <= a)
+                continue;
+            if (x > z)
+                x = z;
+            double u = x / h;
+            int j = u >= t->n - 1 ? t->n - 2 : (int)u;
+            double p = t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
+            double fx = p * sin(x);
+            if (prev_x == a) {
+                double ua = a / h;
+                int ja = ua >= t->n - 1 ? t->n - 2 : (int)ua;
+                prev_f = (t->rgb[3 * ja + 1] + (ua - ja) * (t->rgb[3 * (ja + 1) + 1] - t->rgb[3 * ja + 1])) * sin(a);
+            }
+            sum += 0.5 * (fx + prev_f) * (x - prev_x);
+            prev_x = x;
+            prev_f = fx;
+            if (x >= z)
+                break;
+        }
+        double th = band_node(b), u = th / h;
+        int j = u >= t->n - 1 ? t->n - 2 : (int)u;
+        double p_node = t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
+        /* per view: the band's integral of P~ shared by its views, over P~ at the view */
+        r->energy_ss_w[b] = p_node > 0 ? 2.0 * CU_PI * sum / BAND_NPHI[b] / p_node : 0.0;
+    }
+}
+
+static int efail(cu_error *err, const char *what)
+{
+    snprintf(err->msg, sizeof err->msg, "energy closure: %s", what);
+    return 1;
+}
+
+int cu_energy_init(cu_renderer *r, const char *fs_defs, cu_error *err)
+{
+    r->ms_gain = 1.0;
+    if ((r->ms_mode != CU_MS_SLAB && r->ms_mode != CU_MS_COLLECTOR) || !r->scene.ms_closure)
+        return 0;
+    cu_gl *gl = &r->gl;
+    char defs[2048];
+    if (snprintf(defs, sizeof defs, "%s#define ENERGY_PASS 1\n", fs_defs) >= (int)sizeof defs)
+        return efail(err, "shader defines too long");
+    if (!(r->prog_energy = cu_gl_program(gl, "fullscreen.vert", "cloud.frag", defs, err)))
+        return 1;
+    /* the slab model already needs half-float targets; RGBA32F where it renders, for the sums' precision */
+    GLenum fmt = r->float_rt ? GL_RGBA32F : GL_RGBA16F;
+    gl->GenTextures(1, &r->energy_tex);
+    gl->BindTexture(GL_TEXTURE_2D, r->energy_tex);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, (GLint)fmt, EN_SIZE * EN_VIEWS, EN_SIZE, 0, GL_RGBA,
+                   fmt == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->GenFramebuffers(1, &r->energy_fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->energy_fbo);
+    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->energy_tex, 0);
+    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        snprintf(err->msg, sizeof err->msg, "energy closure: framebuffer incomplete (0x%x)", st);
+        return 1;
+    }
+    return 0;
+}
+
+void cu_energy_delete(cu_renderer *r)
+{
+    cu_gl *gl = &r->gl;
+    if (r->prog_energy) gl->DeleteProgram(r->prog_energy);
+    if (r->energy_tex) gl->DeleteTextures(1, &r->energy_tex);
+    if (r->energy_fbo) gl->DeleteFramebuffers(1, &r->energy_fbo);
+    r->prog_energy = r->energy_tex = r->energy_fbo = 0;
+}
+
+/* The views: direction d the light leaves toward (scattering angle Theta from the sunbeam -s), the band it stands
+ * for, and its solid angle. Azimuths start 0.4 rad off the sun's horizontal axis, so no view lies exactly in a
+ * horizontal layer (seen edge on, a layer thinner than a pixel falls between the pixel centres). */
+static void views(vec3 s, vec3 right, vec3 up, vec3 *d, int *band, double *omega)
+{
+    int n = 0;
+    for (int b = 0; b < EN_BANDS; b++) {
+        double th = band_node(b);
+        double cell = 2.0 * CU_PI * (cos(BAND_EDGE[b] * CU_PI / 180) - cos(BAND_EDGE[b + 1] * CU_PI / 180)) /
+                      BAND_NPHI[b];
+        for (int j = 0; j < BAND_NPHI[b]; j++) {
+            double ph = 0.4 + (j + 0.5) * 2.0 * CU_PI / BAND_NPHI[b];
+            vec3 side = v3_add(v3_scale(right, cos(ph)), v3_scale(up, sin(ph)));
+            d[n] = v3_add(v3_scale(s, -cos(th)), v3_scale(side, sin(th)));
+            band[n] = b;
+            omega[n++] = cell;
+        }
+    }
+}
+
+void cu_energy_update(cu_renderer *r)
+{
+    r->ms_gain = 1.0;
+    if (!r->prog_energy || !(r->cloud.ke > 0))
+        return;
+    cu_gl *gl = &r->gl;
+    vec3 d[EN_VIEWS];
+    int band[EN_VIEWS];
+    double omega[EN_VIEWS];
+    views(r->sky.sun_dir, r->sun_right, r->sun_up, d, band, omega);
+    double R = r->cloud.bound_radius, D = EN_DIST * R;
+    double fov = 2.0 * atan(R / D), px = 2.0 * R / EN_SIZE; /* footprint of a pixel on the plane through the centre */
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->energy_fbo);
+    gl->Viewport(0, 0, EN_SIZE * EN_VIEWS, EN_SIZE);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->Disable(GL_BLEND);
+    gl->Disable(GL_CULL_FACE);
+    gl->ClearColor(0, 0, 0, 0);
+    gl->Clear(GL_COLOR_BUFFER_BIT);
+    gl->BindVertexArray(r->empty_vao);
+    for (int k = 0; k < EN_VIEWS; k++) {
+        /* the camera on the side the light leaves toward: at D d, looking along -d */
+        vec3 cam = v3_scale(d[k], D), look = v3_scale(d[k], -1.0);
+        vec3 up = fabs(look.y) > 0.9 ? v3(1, 0, 0) : v3(0, 1, 0);
+        mat4 vp = m4_mul(m4_perspective(fov, 1.0, D - 2.0 * R, D + 2.0 * R), m4_look_dir(cam, look, up));
+        float vpf[16], inv[16];
+        m4_to_float(vp, vpf);
+        m4_to_float(m4_inverse(vp), inv);
+        cu_set_cloud_uniforms(r, r->prog_energy, cam, vpf, inv);
+        gl->Viewport(EN_SIZE * k, 0, EN_SIZE, EN_SIZE);
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    float *px4 = malloc(sizeof(float) * 4 * EN_SIZE * EN_VIEWS * EN_SIZE);
+    if (!px4) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+        cu_log(r, CU_LOG_WARN, "energy closure: out of memory: multiple scattering unscaled");
+        return;
+    }
+    gl->ReadPixels(0, 0, EN_SIZE * EN_VIEWS, EN_SIZE, GL_RGBA, GL_FLOAT, px4);
+    GLenum e = gl->GetError();
+    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (e != GL_NO_ERROR) {
+        free(px4);
+        cu_log(r, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled", e);
+        return;
+    }
+    double p_ss = 0, p_ms = 0, p_in = 0, b_ms = 0, f = r->peak_f[1], a = px * px;
+    for (int k = 0; k < EN_VIEWS; k++) {
+        int sun_view = band[k] == EN_BANDS - 1; /* Theta = 180 deg: the camera looks along the sunbeam */
+        for (int y = 0; y < EN_SIZE; y++)
+            for (int x = 0; x < EN_SIZE; x++) {
+                const float *q = px4 + 4 * ((size_t)y * EN_SIZE * EN_VIEWS + (size_t)(EN_SIZE * k + x));
+                p_ss += r->energy_ss_w[band[k]] * q[0] * a;
+                p_ms += omega[k] * q[1] * a;
+                if (sun_view) {
+                    p_in += (1.0 - exp(-(1.0 - f) * q[2])) * a;
+                    b_ms += cu_slab_model_ms_available(r->slab_model, q[2] / CU_SLAB_KE_REF) * a;
+                }
+            }
+    }
+    free(px4);
+    if (p_ms > 0 && isfinite(p_ms) && isfinite(p_ss) && isfinite(b_ms) && isfinite(p_in))
+        r->ms_gain = fmin(1.0, fmax(0.0, fmin(b_ms, p_in - p_ss) / p_ms));
+    r->energy_in = p_in;
+    r->energy_ss = p_ss;
+    r->energy_ms = p_ms;
+    r->energy_ms_budget = b_ms;
+    cu_log(r, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple %.4g of %.4g: gain %.4f",
+           p_in, p_ss, p_ms, b_ms, r->ms_gain);
+}
