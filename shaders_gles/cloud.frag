@@ -17,7 +17,7 @@
 #include "density.glsl"
 #include "sunmap.glsl"
 #if MS_MODE >= 2
-uniform float u_ms_gain;                // energy closure (src/energy.c): <= 1, scales the slab model's radiance
+uniform vec2 u_ms_gain;                 // energy closure (src/energy.c): <= 1, on reflected and transmitted light
 #include "ms_slab.glsl"
 uniform sampler2D u_slab_a, u_slab_n;   // the slab map from the sun (slab_map.frag), mipmapped
 uniform float u_slab_lod;               // its level for the fixed blur ms.blur (metres -> texels -> log2)
@@ -124,9 +124,10 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 // model with Kol's simplification (a fixed blur instead of the collector search). Angles per eqs. 3.56-3.57; the
 // scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it). Also returns the opacity
 // the fitted slab has along the view (delta-M), for weighting the interval.
-float ms_slab(vec3 p, vec3 dir, float mu, out float slab_alpha)
+float ms_slab(vec3 p, vec3 dir, float mu, out float slab_alpha, out bool lit_side)
 {
     slab_alpha = 1.0;
+    lit_side = true;
     float t, d, scale;
     vec3 n;
 #if MS_MODE == 3
@@ -138,6 +139,7 @@ float ms_slab(vec3 p, vec3 dir, float mu, out float slab_alpha)
 #endif
     float thv = 180.0 - degrees(acos(clamp(dot(-dir, n), -1.0, 1.0)));
     float thl = degrees(acos(clamp(dot(u_sun_dir, n), -1.0, 1.0)));
+    lit_side = thv > 90.0; // the eye on the side of the fitted slab the sun lights: reflected, else transmitted
     // Kol 3.4.5: seen from below the fitted slab's normal a point at d = 0 would get no light at all (a protruding
     // part lit from the side); its depth is raised to at least t / 10 there. Seen from above, d = 0 is the true exit.
     d = max(d, smoothstep(100.0, 80.0, thv) * 0.1 * t);
@@ -194,7 +196,7 @@ void main()
     float taup = 0.0;     // the same with the delta-M extinction, for scattered light on its way to the eye
     vec3 L = vec3(0.0);   // scattered radiance / sun irradiance, attenuated to the eye
     vec3 amb = vec3(0.0); // sky and ground light
-    float Lms = 0.0;      // the slab model's multiple scattering (grey), attenuated to the eye
+    vec2 Lms = vec2(0.0); // the slab model's multiple scattering (grey) reflected and transmitted, to the eye
     int k = 0, intervals = 0;
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
@@ -251,8 +253,10 @@ void main()
         // blends with the interval's opacity alone, which takes the slab's thickness into account twice (-11 % at
         // tau 4 seen from above).
         float slab_alpha;
-        float ms = ms_slab(p_entry, dir, mu, slab_alpha);
-        Lms += exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0) * ms;
+        bool lit_side;
+        float ms = ms_slab(p_entry, dir, mu, slab_alpha, lit_side);
+        ms *= exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0);
+        Lms += lit_side ? vec2(ms, 0.0) : vec2(0.0, ms);
 #endif
         // Sky and ground light: an isotropic field of the environment's mean radiance J in the cloud. A uniform
         // source in a non-absorbing medium seen through optical depth tau gives J (1 - e^-tau): exact for a uniform
@@ -276,13 +280,13 @@ void main()
 #endif
     float alpha = 1.0 - exp(-tau);
 #if ENERGY_PASS
-    // Per unit sun irradiance, without the forward peak: single scattering, multiple scattering before the
-    // closure's gain, and the optical depth along the view (seen from the sun: the column's).
-    o_color = vec4(L.g, Lms, tau, 1.0);
+    // Per unit sun irradiance, without the forward peak: single scattering, multiple scattering reflected and
+    // transmitted before the closure's gains, and the optical depth along the view (seen from the sun: the column's).
+    o_color = vec4(L.g, Lms, tau);
     return;
 #endif
 #if MS_MODE >= 2
-    L += vec3(u_ms_gain * Lms);
+    L += vec3(dot(u_ms_gain, Lms));
 #endif
     o_color = vec4(u_sun_irr * L + amb, alpha);
 }

@@ -91,7 +91,7 @@ static int efail(cu_error *err, const char *what)
 
 int cu_energy_init(cu_renderer *r, const char *fs_defs, cu_error *err)
 {
-    r->ms_gain = 1.0;
+    r->ms_gain[0] = r->ms_gain[1] = 1.0;
     if ((r->ms_mode != CU_MS_SLAB && r->ms_mode != CU_MS_COLLECTOR) || !r->scene.ms_closure)
         return 0;
     cu_gl *gl = &r->gl;
@@ -151,7 +151,7 @@ static void views(vec3 s, vec3 right, vec3 up, vec3 *d, int *band, double *omega
 
 void cu_energy_update(cu_renderer *r)
 {
-    r->ms_gain = 1.0;
+    r->ms_gain[0] = r->ms_gain[1] = 1.0;
     if (!r->prog_energy || !(r->cloud.ke > 0))
         return;
     cu_gl *gl = &r->gl;
@@ -195,27 +195,44 @@ void cu_energy_update(cu_renderer *r)
         cu_log(r, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled", e);
         return;
     }
-    double p_ss = 0, p_ms = 0, p_in = 0, b_ms = 0, f = r->peak_f[1], a = px * px;
+    double p_ss = 0, p_r = 0, p_t = 0, p_in = 0, b_r = 0, b_t = 0, f = r->peak_f[1], a = px * px;
     for (int k = 0; k < EN_VIEWS; k++) {
         int sun_view = band[k] == EN_BANDS - 1; /* Theta = 180 deg: the camera looks along the sunbeam */
         for (int y = 0; y < EN_SIZE; y++)
             for (int x = 0; x < EN_SIZE; x++) {
                 const float *q = px4 + 4 * ((size_t)y * EN_SIZE * EN_VIEWS + (size_t)(EN_SIZE * k + x));
                 p_ss += r->energy_ss_w[band[k]] * q[0] * a;
-                p_ms += omega[k] * q[1] * a;
+                p_r += omega[k] * q[1] * a;
+                p_t += omega[k] * q[2] * a;
                 if (sun_view) {
-                    p_in += (1.0 - exp(-(1.0 - f) * q[2])) * a;
-                    b_ms += cu_slab_model_ms_available(r->slab_model, q[2] / CU_SLAB_KE_REF) * a;
+                    double up, down;
+                    cu_slab_model_ms_budget(r->slab_model, q[3] / CU_SLAB_KE_REF, &up, &down);
+                    p_in += (1.0 - exp(-(1.0 - f) * q[3])) * a;
+                    b_r += up * a;
+                    b_t += down * a;
                 }
             }
     }
     free(px4);
-    if (p_ms > 0 && isfinite(p_ms) && isfinite(p_ss) && isfinite(b_ms) && isfinite(p_in))
-        r->ms_gain = fmin(1.0, fmax(0.0, fmin(b_ms, p_in - p_ss) / p_ms));
+    if (!(isfinite(p_ss) && isfinite(p_r) && isfinite(p_t) && isfinite(p_in) && isfinite(b_r) && isfinite(b_t))) {
+        cu_log(r, CU_LOG_WARN, "energy closure: non-finite powers: multiple scattering unscaled");
+        return;
+    }
+    /* each side within its column budget, then the total within what single scattering leaves */
+    double g_r = p_r > b_r ? b_r / p_r : 1.0, g_t = p_t > b_t ? b_t / p_t : 1.0;
+    double ms = g_r * p_r + g_t * p_t, left = fmax(p_in - p_ss, 0.0);
+    if (ms > left) {
+        g_r *= left / ms;
+        g_t *= left / ms;
+    }
+    r->ms_gain[0] = g_r;
+    r->ms_gain[1] = g_t;
     r->energy_in = p_in;
     r->energy_ss = p_ss;
-    r->energy_ms = p_ms;
-    r->energy_ms_budget = b_ms;
-    cu_log(r, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple %.4g of %.4g: gain %.4f",
-           p_in, p_ss, p_ms, b_ms, r->ms_gain);
+    r->energy_ms[0] = p_r;
+    r->energy_ms[1] = p_t;
+    r->energy_ms_budget[0] = b_r;
+    r->energy_ms_budget[1] = b_t;
+    cu_log(r, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple reflected %.4g of %.4g, "
+           "transmitted %.4g of %.4g: gains %.4f %.4f", p_in, p_ss, p_r, b_r, p_t, b_t, g_r, g_t);
 }

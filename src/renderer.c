@@ -434,9 +434,9 @@ int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg
     return 0;
 }
 
-double cu_renderer_ms_gain(const cu_renderer *r)
+double cu_renderer_ms_gain(const cu_renderer *r, int transmitted)
 {
-    return r->ms_gain;
+    return r->ms_gain[transmitted ? 1 : 0];
 }
 
 void cu_renderer_get_sun(const cu_renderer *r, double *el, double *az)
@@ -658,7 +658,7 @@ void cu_set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, 
     gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_g"), (float)(s->phase_g));
     gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
                   (float)r->peak_f[2]);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_ms_gain"), (float)r->ms_gain);
+    gl->Uniform2f(gl->GetUniformLocation(p, "u_ms_gain"), (float)r->ms_gain[0], (float)r->ms_gain[1]);
 }
 
 void cu_bind_cloud_textures(cu_renderer *r)

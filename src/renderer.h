@@ -52,10 +52,11 @@ struct cu_renderer {
     GLuint prog_sun, prog_sun_opacity, prog_slab_map, prog_depth, prog_cloud, prog_cloud_fs, prog_sky, prog_tonemap, prog_copy;
 
     GLuint prog_energy, energy_tex, energy_fbo; /* the slab model's energy closure (energy.c) */
-    double ms_gain;                    /* its gain on multiple scattering, <= 1 */
+    double ms_gain[2];                 /* its gains on multiple scattering reflected and transmitted, <= 1 */
     double energy_ss_w[8];             /* its weights for single scattering per band of angles (energy.c) */
-    double energy_in, energy_ss, energy_ms, energy_ms_budget; /* its last powers (m^2 x sun irradiance):
-                                          intercepted (delta-M), single, multiple, and what multiple may carry */
+    double energy_in, energy_ss, energy_ms[2], energy_ms_budget[2]; /* its last powers (m^2 x sun irradiance):
+                                          intercepted (delta-M), single, multiple reflected and transmitted, and what
+                                          those may carry */
     GLuint hdr_fbo, hdr_tex, hdr_depth;
     int hdr_w, hdr_h;
     GLenum hdr_format;

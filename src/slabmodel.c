@@ -109,7 +109,7 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
         for (int il = 0; il < m->nl; il++) {
             double t = m->t[k], tau = t * CU_SLAB_KE_REF * tr.tau_scale, thl = m->thl[il];
             double mu0 = cos(thl * CU_PI / 180);
-            double ms = 0, ss = 0;
+            double ms = 0, ss = 0, ms_up = 0;
             for (int i = 0; i < NV; i++)
                 for (int j = 0; j < NP; j++) {
                     double thv = (i + 0.5) * 180.0 / NV, ph = (j + 0.5) * 180.0 / NP; /* phi symmetric */
@@ -118,7 +118,9 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
                     double th = acos(fmax(-1.0, fmin(1.0, ct))) * 180 / CU_PI;
                     double mu = fabs(cos(tv)), dw = sin(tv) * (CU_PI / NV) * (2 * CU_PI / NP);
                     int up = thv > 90;
-                    ms += cu_slab_model_eval(m, 1, t, up ? 0 : t, thv, thl, th) * mu * dw / mu0;
+                    double c = cu_slab_model_eval(m, 1, t, up ? 0 : t, thv, thl, th) * mu * dw / mu0;
+                    ms += c;
+                    ms_up += up ? c : 0;
                     /* single scattering out of the top (up) or bottom, I / F per Chandrasekhar, flux / (mu0 F) */
                     double p = hg(tr.g, ct);
                     double s1 = up ? p * mu0 / (mu + mu0) * (1 - exp(-tau * (1 / mu + 1 / mu0)))
@@ -127,26 +129,37 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
                     ss += s1 * mu * dw / mu0;
                 }
             double avail = 1 - exp(-tau / mu0) - ss;
-            if (il == 0)
-                m->ms_avail[k] = fmax(avail, 0.0);
             if (ms > avail && avail > 0)
                 m->kappa[k][il] = avail / ms;
+            if (il == 0) {
+                m->ms_up[k] = m->kappa[k][il] * ms_up;
+                m->ms_down[k] = m->kappa[k][il] * (ms - ms_up);
+            }
         }
 }
 
-double cu_slab_model_ms_available(const cu_slab_model *m, double t)
+void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double *up, double *down)
 {
+    *up = *down = 0;
     if (!(t > 0) || m->nt < 1)
-        return 0;
-    if (t <= m->t[0])
-        return m->ms_avail[0] * (t / m->t[0]) * (t / m->t[0]);
-    if (t >= m->t[m->nt - 1])
-        return m->ms_avail[m->nt - 1];
+        return;
+    if (t <= m->t[0] || m->nt < 2) {
+        double s = t < m->t[0] ? (t / m->t[0]) * (t / m->t[0]) : 1.0;
+        *up = m->ms_up[0] * s;
+        *down = m->ms_down[0] * s;
+        return;
+    }
+    if (t >= m->t[m->nt - 1]) {
+        *up = m->ms_up[m->nt - 1];
+        *down = m->ms_down[m->nt - 1];
+        return;
+    }
     int k = 0;
     while (k + 2 < m->nt && t > m->t[k + 1])
         k++;
     double w = log(t / m->t[k]) / log(m->t[k + 1] / m->t[k]);
-    return m->ms_avail[k] + w * (m->ms_avail[k + 1] - m->ms_avail[k]);
+    *up = m->ms_up[k] + w * (m->ms_up[k + 1] - m->ms_up[k]);
+    *down = m->ms_down[k] + w * (m->ms_down[k + 1] - m->ms_down[k]);
 }
 
 /* Storage for one parsed value: which field, group, thickness node and angle node. */
