@@ -18,6 +18,9 @@
 #include "sunmap.glsl"
 #if MS_MODE >= 2
 uniform vec2 u_ms_gain;                 // energy closure (src/energy.c): <= 1, on reflected and transmitted light
+#if ENERGY_PASS
+uniform bool u_budget_view;             // the closure's view from the sun: columns' optical depth and slab angle
+#endif
 #include "ms_slab.glsl"
 uniform sampler2D u_slab_a, u_slab_n;   // the slab map from the sun (slab_map.frag), mipmapped
 uniform float u_slab_lod;               // its level for the fixed blur ms.blur (metres -> texels -> log2)
@@ -197,6 +200,9 @@ void main()
     vec3 L = vec3(0.0);   // scattered radiance / sun irradiance, attenuated to the eye
     vec3 amb = vec3(0.0); // sky and ground light
     vec2 Lms = vec2(0.0); // the slab model's multiple scattering (grey) reflected and transmitted, to the eye
+#if ENERGY_PASS
+    vec3 p_first = ro;    // where the ray enters the cloud
+#endif
     int k = 0, intervals = 0;
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
@@ -218,6 +224,10 @@ void main()
         float t = a;
         vec3 p = ro + dir * (t + nudge);
         vec3 p_entry = p;     // Kol's "multiple scattering point": the interval's entry, a hair inside
+#if ENERGY_PASS
+        if (intervals == 1)
+            p_first = p_entry;
+#endif
         float ke_prev = extinction(p, t + nudge);
         vec3 S_prev = source(p, ke_prev, ph0);
         for (int i = 1; i <= nk; i++) {
@@ -281,8 +291,19 @@ void main()
     float alpha = 1.0 - exp(-tau);
 #if ENERGY_PASS
     // Per unit sun irradiance, without the forward peak: single scattering, multiple scattering reflected and
-    // transmitted before the closure's gains, and the optical depth along the view (seen from the sun: the column's).
-    o_color = vec4(L.g, Lms, tau);
+    // transmitted before the closure's gains. From the sun: the column's optical depth and the cosine of the sun's
+    // angle to the slab fitted where it enters (the slab's thickness is the column's times that cosine).
+    if (u_budget_view) {
+        float st, sd, sscale;
+        vec3 sn;
+        float cos_l = 1.0;
+        if (fit_slab(u_slab_a, u_slab_n, u_sun_dir, u_sun_right, u_sun_up, u_sun_R, u_slab_lod, p_first, p_first, st,
+                     sd, sn, sscale))
+            cos_l = max(dot(sn, u_sun_dir), 0.05);
+        o_color = vec4(tau, cos_l, 0.0, 0.0);
+        return;
+    }
+    o_color = vec4(L.g, Lms, 0.0);
     return;
 #endif
 #if MS_MODE >= 2

@@ -22,13 +22,15 @@
  * errors of P_ss decide. A cloud within both budgets is left alone. The forward peak is left out on both sides (its
  * energy is exact by construction, cloud.frag). One gain per scene: a field of clouds shares it.
  *
- * Cost: EN_VIEWS x 24 x 24 = 22k cloud fragments and one read-back, only when the sun pass is redone. */
+ * Cost: (EN_VIEWS - 1) x 24 x 24 + 96 x 96 = 31k cloud fragments and two read-backs, only when the sun pass is
+ * redone. */
 #include "energy.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #define EN_SIZE 24
+#define EN_SUN_SIZE 96 /* the budget view from the sun: its columns set the budgets, so finer (silhouette ~0.1 %) */
 #define EN_BANDS 8
 #define EN_VIEWS 38
 #define EN_DIST 64.0 /* camera distance in bounding radii: rays parallel to 1/64 rad, footprints equal to 1.6 % */
@@ -104,7 +106,7 @@ int cu_energy_init(cu_renderer *r, const char *fs_defs, cu_error *err)
     GLenum fmt = r->float_rt ? GL_RGBA32F : GL_RGBA16F;
     gl->GenTextures(1, &r->energy_tex);
     gl->BindTexture(GL_TEXTURE_2D, r->energy_tex);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, (GLint)fmt, EN_SIZE * EN_VIEWS, EN_SIZE, 0, GL_RGBA,
+    gl->TexImage2D(GL_TEXTURE_2D, 0, (GLint)fmt, EN_SIZE * EN_VIEWS + EN_SUN_SIZE, EN_SUN_SIZE, 0, GL_RGBA,
                    fmt == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -160,34 +162,39 @@ void cu_energy_update(cu_renderer *r)
     double omega[EN_VIEWS];
     views(r->sky.sun_dir, r->sun_right, r->sun_up, d, band, omega);
     double R = r->cloud.bound_radius, D = EN_DIST * R;
-    double fov = 2.0 * atan(R / D), px = 2.0 * R / EN_SIZE; /* footprint of a pixel on the plane through the centre */
+    double fov = 2.0 * atan(R / D);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->energy_fbo);
-    gl->Viewport(0, 0, EN_SIZE * EN_VIEWS, EN_SIZE);
+    gl->Viewport(0, 0, EN_SIZE * EN_VIEWS + EN_SUN_SIZE, EN_SUN_SIZE);
     gl->Disable(GL_DEPTH_TEST);
     gl->Disable(GL_BLEND);
     gl->Disable(GL_CULL_FACE);
     gl->ClearColor(0, 0, 0, 0);
     gl->Clear(GL_COLOR_BUFFER_BIT);
     gl->BindVertexArray(r->empty_vao);
-    for (int k = 0; k < EN_VIEWS; k++) {
+    GLint budget_loc = gl->GetUniformLocation(r->prog_energy, "u_budget_view");
+    for (int k = 0; k <= EN_VIEWS; k++) { /* the views, then the budget view from the sun (= the last view's) */
         /* the camera on the side the light leaves toward: at D d, looking along -d */
-        vec3 cam = v3_scale(d[k], D), look = v3_scale(d[k], -1.0);
+        vec3 dk = d[k < EN_VIEWS ? k : EN_VIEWS - 1];
+        vec3 cam = v3_scale(dk, D), look = v3_scale(dk, -1.0);
         vec3 up = fabs(look.y) > 0.9 ? v3(1, 0, 0) : v3(0, 1, 0);
         mat4 vp = m4_mul(m4_perspective(fov, 1.0, D - 2.0 * R, D + 2.0 * R), m4_look_dir(cam, look, up));
         float vpf[16], inv[16];
         m4_to_float(vp, vpf);
         m4_to_float(m4_inverse(vp), inv);
         cu_set_cloud_uniforms(r, r->prog_energy, cam, vpf, inv);
-        gl->Viewport(EN_SIZE * k, 0, EN_SIZE, EN_SIZE);
+        gl->Uniform1i(budget_loc, k == EN_VIEWS);
+        gl->Viewport(EN_SIZE * k, 0, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
     }
-    float *px4 = malloc(sizeof(float) * 4 * EN_SIZE * EN_VIEWS * EN_SIZE);
+    const int strip = EN_SIZE * EN_VIEWS, ns = EN_SUN_SIZE * EN_SUN_SIZE;
+    float *px4 = malloc(sizeof(float) * 4 * ((size_t)strip * EN_SIZE + (size_t)ns)), *sun4 = px4 + 4 * strip * EN_SIZE;
     if (!px4) {
         gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
         cu_log(r, CU_LOG_WARN, "energy closure: out of memory: multiple scattering unscaled");
         return;
     }
-    gl->ReadPixels(0, 0, EN_SIZE * EN_VIEWS, EN_SIZE, GL_RGBA, GL_FLOAT, px4);
+    gl->ReadPixels(0, 0, strip, EN_SIZE, GL_RGBA, GL_FLOAT, px4);
+    gl->ReadPixels(strip, 0, EN_SUN_SIZE, EN_SUN_SIZE, GL_RGBA, GL_FLOAT, sun4);
     GLenum e = gl->GetError();
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (e != GL_NO_ERROR) {
@@ -195,23 +202,29 @@ void cu_energy_update(cu_renderer *r)
         cu_log(r, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled", e);
         return;
     }
-    double p_ss = 0, p_r = 0, p_t = 0, p_in = 0, b_r = 0, b_t = 0, f = r->peak_f[1], a = px * px;
+    /* pixel footprints on the plane through the centre */
+    double p_ss = 0, p_r = 0, p_t = 0, p_in = 0, b_r = 0, b_t = 0, f = r->peak_f[1];
     for (int k = 0; k < EN_VIEWS; k++) {
-        int sun_view = band[k] == EN_BANDS - 1; /* Theta = 180 deg: the camera looks along the sunbeam */
+        double a = (2.0 * R / EN_SIZE) * (2.0 * R / EN_SIZE);
         for (int y = 0; y < EN_SIZE; y++)
             for (int x = 0; x < EN_SIZE; x++) {
-                const float *q = px4 + 4 * ((size_t)y * EN_SIZE * EN_VIEWS + (size_t)(EN_SIZE * k + x));
+                const float *q = px4 + 4 * ((size_t)y * strip + (size_t)(EN_SIZE * k + x));
                 p_ss += r->energy_ss_w[band[k]] * q[0] * a;
                 p_r += omega[k] * q[1] * a;
                 p_t += omega[k] * q[2] * a;
-                if (sun_view) {
-                    double up, down;
-                    cu_slab_model_ms_budget(r->slab_model, q[3] / CU_SLAB_KE_REF, &up, &down);
-                    p_in += (1.0 - exp(-(1.0 - f) * q[3])) * a;
-                    b_r += up * a;
-                    b_t += down * a;
-                }
             }
+    }
+    /* from the sun, a column a pixel: optical depth tau along it and the cosine of the sun's angle to its slab */
+    double a = (2.0 * R / EN_SUN_SIZE) * (2.0 * R / EN_SUN_SIZE);
+    for (int i = 0; i < ns; i++) {
+        double tau = sun4[4 * i], mu0 = sun4[4 * i + 1], up, down;
+        if (!(tau > 0))
+            continue;
+        cu_slab_model_ms_budget(r->slab_model, tau * mu0 / CU_SLAB_KE_REF, acos(fmin(mu0, 1.0)) * 180 / CU_PI, &up,
+                                &down);
+        p_in += (1.0 - exp(-(1.0 - f) * tau)) * a;
+        b_r += up * a;
+        b_t += down * a;
     }
     free(px4);
     if (!(isfinite(p_ss) && isfinite(p_r) && isfinite(p_t) && isfinite(p_in) && isfinite(b_r) && isfinite(b_t))) {

@@ -131,35 +131,40 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
             double avail = 1 - exp(-tau / mu0) - ss;
             if (ms > avail && avail > 0)
                 m->kappa[k][il] = avail / ms;
-            if (il == 0) {
-                m->ms_up[k] = m->kappa[k][il] * ms_up;
-                m->ms_down[k] = m->kappa[k][il] * (ms - ms_up);
-            }
+            m->ms_up[k][il] = m->kappa[k][il] * ms_up;
+            m->ms_down[k][il] = m->kappa[k][il] * (ms - ms_up);
         }
 }
 
-void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double *up, double *down)
+void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double thl, double *up, double *down)
 {
     *up = *down = 0;
-    if (!(t > 0) || m->nt < 1)
+    if (!(t > 0) || m->nt < 1 || m->nl < 1)
         return;
-    if (t <= m->t[0] || m->nt < 2) {
-        double s = t < m->t[0] ? (t / m->t[0]) * (t / m->t[0]) : 1.0;
-        *up = m->ms_up[0] * s;
-        *down = m->ms_down[0] * s;
-        return;
+    int k = 0, k1 = 0, il = 0, il1 = 0;
+    double wt = 0, wl = 0, s = 1;
+    if (t <= m->t[0]) {
+        s = (t / m->t[0]) * (t / m->t[0]);
+    } else if (t >= m->t[m->nt - 1]) {
+        k = k1 = m->nt - 1;
+    } else {
+        while (k + 2 < m->nt && t > m->t[k + 1])
+            k++;
+        k1 = k + 1;
+        wt = log(t / m->t[k]) / log(m->t[k1] / m->t[k]);
     }
-    if (t >= m->t[m->nt - 1]) {
-        *up = m->ms_up[m->nt - 1];
-        *down = m->ms_down[m->nt - 1];
-        return;
+    if (thl >= m->thl[m->nl - 1]) {
+        il = il1 = m->nl - 1;
+    } else if (thl > m->thl[0]) {
+        while (il + 2 < m->nl && thl > m->thl[il + 1])
+            il++;
+        il1 = il + 1;
+        wl = (thl - m->thl[il]) / (m->thl[il1] - m->thl[il]);
     }
-    int k = 0;
-    while (k + 2 < m->nt && t > m->t[k + 1])
-        k++;
-    double w = log(t / m->t[k]) / log(m->t[k + 1] / m->t[k]);
-    *up = m->ms_up[k] + w * (m->ms_up[k + 1] - m->ms_up[k]);
-    *down = m->ms_down[k] + w * (m->ms_down[k + 1] - m->ms_down[k]);
+#define LERP2(a) (((1 - wt) * ((1 - wl) * a[k][il] + wl * a[k][il1]) + wt * ((1 - wl) * a[k1][il] + wl * a[k1][il1])) * s)
+    *up = LERP2(m->ms_up);
+    *down = LERP2(m->ms_down);
+#undef LERP2
 }
 
 /* Storage for one parsed value: which field, group, thickness node and angle node. */

@@ -25,9 +25,8 @@ typedef struct cu_slab_model {
     double p[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_P];
     double log_bound[CU_SLAB_GROUPS][CU_SLAB_MAX_T]; /* cap of each fit (slabmodel.c: bound_groups) */
     double kappa[CU_SLAB_MAX_T][CU_SLAB_MAX_L];      /* energy scaling <= 1 (slabmodel.c: conserve_energy) */
-    double ms_up[CU_SLAB_MAX_T], ms_down[CU_SLAB_MAX_T]; /* flux of orders 2+ out of the top and the bottom at the
-                                                        first sun-angle node (0 deg in the committed tables), per unit
-                                                        flux received, after kappa */
+    double ms_up[CU_SLAB_MAX_T][CU_SLAB_MAX_L];      /* flux of orders 2+ out of the top and the bottom per unit */
+    double ms_down[CU_SLAB_MAX_T][CU_SLAB_MAX_L];    /* flux received, after kappa (conserve_energy) */
 } cu_slab_model;
 
 /* The transport the tables were simulated with, for the energy check: single-scattering anisotropy g and the
@@ -56,11 +55,11 @@ double cu_slab_model_eval(const cu_slab_model *m, int first_group, double t, dou
  * texel (iv, row) = (log A1, B1, C, D), (nv + il, row) = (log A2, B2, kappa, 0), (nv + nl + ip, row) = (log P, 0, 0, 0)
  * and log_bound in the y of the first P texel. Logarithms: A1* reaches 5e53 (beyond fp32). */
 void cu_slab_model_pack(const cu_slab_model *m, float *rgba);
-/* Shares of the sunlight falling straight onto a slab of thickness t (table metres) that the model sends out of its
- * top (up) and bottom (down) by two or more scatterings (their sum is at most 1 - e^-tau' - single scattering,
- * conserve_energy), linear in log t between the nodes, constant beyond the last and falling like t^2 (second order)
- * below the first. */
-void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double *up, double *down);
+/* Shares of the sunlight a slab of thickness t (table metres) lit at thl degrees receives that the model sends out
+ * of its top (up) and bottom (down) by two or more scatterings (their sum is at most 1 - e^-tau'/mu0 - single
+ * scattering, conserve_energy): linear in log t and in thl between the nodes, constant beyond the last nodes,
+ * falling like t^2 (second order) below the first thickness. */
+void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double thl, double *up, double *down);
 int cu_slab_model_tex_width(const cu_slab_model *m);
 int cu_slab_model_tex_height(const cu_slab_model *m);
 #endif

@@ -9,7 +9,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "../src/density.h"
+#include "../src/noise.h"
+#include "../src/phase.h"
+#include "../src/scene.h"
 #include "../src/slabmodel.h"
+#include "../src/sunmap.h"
 #include "../src/vecmath.h"
 #include "render_util.h"
 
@@ -163,53 +168,162 @@ static void test_slab_energy_bounded(void **st)
 static const char *const SPHERE =
     "[output]\nsize = 64 64\nexposure = 1\n[camera]\nposition = 0 0 -20000\nlook_at = 0 0 0\nfov = 4\n"
     "[sun]\nelevation = 35\nazimuth = 30\nirradiance = 1 1 1\n[sky]\nmodel = constant\ncolor = 0 0 0\n"
-    "[cloud]\ndensity = 400\nboundary = 20\nphase = hg\ng = 0.85\n[quality]\nnoise = off\n"
+    "[cloud]\ndensity = 400\nboundary = 20\n[quality]\nnoise = off\n"
     "[ellipsoid]\ncenter = 0 0 0\nradii = 500 500 500\n";
 
-/* Energy: a sphere of cloud (radius 500 m, optical diameter 90) in black space, sun irradiance 1. The power it
- * scatters, summed over the sphere of directions (48 cameras far away, each pixel's radiance times its footprint),
- * cannot exceed the power it intercepts, pi R^2. Views within 12 deg of the sun are left out (the sun disk is in
- * them), so the sum is a lower bound of the scattered power.
- * KNOWN FAILURE OF THE MODEL, measured and guarded, not hidden: the slab model applied to a sphere returns 1.055
- * (slabs alone are energy-bounded, test_slab_energy_bounded); the slab fitted at each point ignores light leaving
- * through the sides. This test keeps the measured value from growing (1.06) and would fail at the issue's bound 1;
- * issue 5 stays open on it. */
-static void test_scattered_power_within_intercepted(void **st)
+/* The sunlight a scene's clouds intercept, on the CPU with the engine's density twin (independent of the renderer's
+ * energy closure, src/energy.c): the integral over the sun's cross-section of 1 - e^-(1-f) tau, what the chopped
+ * medium scatters (delta-M), and of 1 - e^-tau, all of it, in m^2 per unit irradiance. Also the cloud's centre and
+ * bounding radius and the sun direction. */
+typedef struct budget {
+    double dm, full, R;
+    vec3 centre, sun;
+} budget;
+
+static budget intercepted(const char *scene, const char *const *sets)
+{
+    budget b = {0};
+    cu_scene *s;
+    cu_error e;
+    int rc = scene[0] == '[' ? cu_scene_parse(&s, "test", scene, strlen(scene), &e) : cu_scene_load(&s, scene, &e);
+    assert_int_equal(rc, 0);
+    for (int i = 0; sets && sets[i]; i++)
+        assert_int_equal(cu_scene_set(s, sets[i], &e), 0);
+    cu_phase_table t;
+    assert_int_equal(cu_phase_table_build(&t, s, "data", &e), 0);
+    cu_noise n;
+    assert_int_equal(cu_noise_create(&n, 20130612u), 0); /* the renderer's NOISE_SEED */
+    cu_cloud cl;
+    cu_cloud_build(&cl, s, &n);
+    cl.ke = cu_phase_table_extinction(&t, s);
+    double f = t.f[1];
+    b.sun = cu_sun_direction(s->sun_elevation, s->sun_azimuth);
+    b.R = cl.bound_radius;
+    b.centre = cl.origin;
+    vec3 right, up;
+    cu_sun_basis(b.sun, &right, &up);
+    const int G = 128, M = 800;
+    double px = 2 * b.R / G, ds = 2 * b.R / M;
+    for (int i = 0; i < G; i++)
+        for (int j = 0; j < G; j++) {
+            double tau = 0;
+            for (int k = 0; k < M; k++) {
+                vec3 p = v3_add(v3_add(v3_scale(right, -b.R + (i + 0.5) * px), v3_scale(up, -b.R + (j + 0.5) * px)),
+                                v3_scale(b.sun, -b.R + (k + 0.5) * ds));
+                tau += cu_cloud_extinction(&cl, p) * ds;
+            }
+            b.dm += (1 - exp(-(1 - f) * tau)) * px * px;
+            b.full += (1 - exp(-tau)) * px * px;
+        }
+    cu_noise_destroy(&n);
+    cu_phase_table_free(&t);
+    cu_scene_free(s);
+    return b;
+}
+
+/* Radiant intensity toward direction d (from the cloud): a far camera's pixels, radiance times footprint. */
+static double intensity(tr_ctx *c, int size, const char *scene, const char *const *sets, const budget *b, vec3 d)
+{
+    double D = 200 * b->R;
+    char pos[160], look[160], fov[64];
+    snprintf(pos, sizeof pos, "camera.position=%.4f %.4f %.4f", b->centre.x + D * d.x, b->centre.y + D * d.y,
+             b->centre.z + D * d.z);
+    snprintf(look, sizeof look, "camera.look_at=%.4f %.4f %.4f", b->centre.x, b->centre.y, b->centre.z);
+    snprintf(fov, sizeof fov, "camera.fov=%.8f", 2 * atan(b->R / D) * 180 / CU_PI);
+    const char *all[16] = {pos, look, fov, "sky.model=constant", "sky.color=0 0 0", "ms.sky_light=off",
+                           "sun.irradiance=1 1 1"};
+    int k = 7;
+    for (int i = 0; sets && sets[i] && k < 15; i++)
+        all[k++] = sets[i];
+    all[k] = NULL;
+    if (tr_render(c, scene, all))
+        fail_msg("%s", c->err);
+    float *px = malloc(sizeof(float) * (size_t)(size * size * 3));
+    tr_read_rgbf(c, px);
+    double I = 0, a = 2 * b->R / size;
+    for (int q = 0; q < size * size; q++)
+        I += px[3 * q + 1] * a * a;
+    free(px);
+    return I;
+}
+
+/* Energy, sphere: a sphere of cloud (radius 500 m, optical diameter 69) in black space. It is symmetric about the
+ * sun's axis, so the power it scatters is 2 pi times the integral of its intensity over cos(Theta), Theta the
+ * scattering angle: 24 views, midpoints in cos(Theta) over Theta = 4..180 deg (at 4 deg the sun disk is out of the
+ * view; the forward peak's energy inside is exact by construction, cloud.frag, and the smooth terms' share of
+ * 0..4 deg is about 0.05 %). The power must stay within what the cloud intercepts, whatever the blur and with the
+ * collector search; without the energy closure it does not (the control). Measured (2026-11-22): 0.843, 0.994 and
+ * 0.970 of the delta-M intercepted power for blur 200 m, 800 m and the collector; 2.12 without the closure at
+ * 800 m; the path tracer gives 0.989 over the same angles (0.961 of pi R^2). */
+static double sphere_power(tr_ctx *c, const char *const *sets, const budget *b)
+{
+    vec3 right, up;
+    cu_sun_basis(b->sun, &right, &up);
+    const int N = 24;
+    double mu0 = cos(4 * CU_PI / 180), power = 0;
+    for (int i = 0; i < N; i++) {
+        double mu = mu0 - (i + 0.5) * (mu0 + 1) / N, s = sqrt(1 - mu * mu);
+        vec3 d = v3_add(v3_scale(b->sun, -mu), v3_scale(right, s)); /* light leaving at Theta = acos(mu) */
+        power += intensity(c, 64, SPHERE, sets, b, d) * 2 * CU_PI * (mu0 + 1) / N;
+    }
+    return power;
+}
+
+static void test_sphere_power_within_intercepted(void **st)
 {
     (void)st;
     tr_ctx c;
     if (tr_open(&c, &cu_display_egl, 64, 64, 1))
         fail_msg("%s", c.err);
-    float *px = malloc(sizeof(float) * 64 * 64 * 3);
-    const int N = 48;
-    double el = 35 * CU_PI / 180, az = 30 * CU_PI / 180;
-    vec3 sun = v3(cos(el) * sin(az), sin(el), cos(el) * cos(az));
-    double D = 20000, fov = 4 * CU_PI / 180, pix = 2 * D * tan(fov / 2) / 64, power = 0;
-    int used = 0;
-    for (int i = 0; i < N; i++) {
-        /* Fibonacci sphere of camera directions, never exactly vertical */
-        double z = 1 - (i + 0.5) * 2.0 / N, r = sqrt(1 - z * z), ph = i * 2.399963229728653;
-        vec3 d = v3(r * cos(ph), z, r * sin(ph));
-        if (v3_dot(d, sun) < -cos(12 * CU_PI / 180))
-            continue; /* camera looking at the sun through the cloud */
-        char pos[128];
-        snprintf(pos, sizeof pos, "camera.position=%.3f %.3f %.3f", D * d.x, D * d.y, D * d.z);
-        const char *sets[] = {pos, NULL};
-        if (tr_render(&c, SPHERE, sets))
-            fail_msg("%s", c.err);
-        tr_read_rgbf(&c, px);
-        double I = 0;
-        for (int k = 0; k < 64 * 64; k++)
-            I += px[3 * k + 1] * pix * pix;
-        power += I * 4 * CU_PI / N;
-        used++;
+    budget b = intercepted(SPHERE, NULL);
+    printf("sphere: intercepted %.4g m^2 (delta-M), %.4g (all), pi R^2 = %.4g\n", b.dm, b.full, CU_PI * 500 * 500);
+    const char *cases[][3] = {{"ms.blur=200", NULL}, {"ms.blur=800", NULL}, {"ms.mode=collector", NULL}};
+    for (int k = 0; k < 3; k++) {
+        double p = sphere_power(&c, cases[k], &b);
+        printf("sphere, %s: scattered %.4f of the intercepted (delta-M)\n", cases[k][0], p / b.dm);
+        assert_true(p <= b.dm);
+        assert_true(p > 0.8 * b.dm); /* and most of it is there: the test notices a dark cloud */
     }
-    double intercepted = CU_PI * 500.0 * 500.0;
-    printf("sphere: scattered power over %d of %d directions = %.4f of the intercepted sunlight\n", used, N,
-           power / intercepted);
-    assert_true(power < 1.06 * intercepted);
-    assert_true(power > 0.5 * intercepted); /* and most of it is there: the test would notice a dark cloud */
-    free(px);
+    const char *off[] = {"ms.blur=800", "ms.closure=off", NULL};
+    double p = sphere_power(&c, off, &b);
+    printf("sphere, ms.blur=800 without the closure: %.4f of the intercepted (delta-M)\n", p / b.dm);
+    assert_true(p > 1.3 * b.dm);
+    tr_close(&c);
+}
+
+/* Energy, a noisy cumulus (scenes/cumulus.scene, sky and sky light off): intensities over a Fibonacci sphere of 96
+ * directions (4 pi / 96 sr each, 48 x 48 pixels), leaving out those within 10 deg of the sunbeam (the forward peak,
+ * exact by construction, and the sun disk). Measured (2026-11-22): 0.935 of the delta-M intercepted power with the
+ * closure (96 directions; 600 directions at 48 pixels gave 0.94 and 64 at 64 pixels 0.97 with an earlier version of
+ * the closure: the rule's error is about 3 %), 1.57 without it (32 directions). */
+static double fibonacci_power(tr_ctx *c, const char *scene, const char *const *sets, const budget *b, int n)
+{
+    double power = 0;
+    for (int i = 0; i < n; i++) {
+        double z = 1 - (i + 0.5) * 2.0 / n, r = sqrt(1 - z * z), ph = i * 2.399963229728653;
+        vec3 d = v3(r * cos(ph), z, r * sin(ph));
+        if (v3_dot(d, b->sun) < -cos(10 * CU_PI / 180))
+            continue;
+        power += intensity(c, 48, scene, sets, b, d) * 4 * CU_PI / n;
+    }
+    return power;
+}
+
+static void test_cumulus_power_within_intercepted(void **st)
+{
+    (void)st;
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, 48, 48, 1))
+        fail_msg("%s", c.err);
+    budget b = intercepted("scenes/cumulus.scene", NULL);
+    double p = fibonacci_power(&c, "scenes/cumulus.scene", NULL, &b, 96);
+    printf("cumulus: intercepted %.4g m^2 (delta-M); scattered %.4f of it\n", b.dm, p / b.dm);
+    assert_true(p <= b.dm);
+    assert_true(p > 0.7 * b.dm);
+    const char *off[] = {"ms.closure=off", NULL};
+    double q = fibonacci_power(&c, "scenes/cumulus.scene", off, &b, 32);
+    printf("cumulus without the closure: %.4f of it\n", q / b.dm);
+    assert_true(q > 1.2 * b.dm);
     tr_close(&c);
 }
 
@@ -255,7 +369,8 @@ int main(void)
         cmocka_unit_test(test_table_loader_rejects_bad_input),
         cmocka_unit_test(test_model_evaluation_is_finite_and_bounded),
         cmocka_unit_test(test_slab_energy_bounded),
-        cmocka_unit_test(test_scattered_power_within_intercepted),
+        cmocka_unit_test(test_sphere_power_within_intercepted),
+        cmocka_unit_test(test_cumulus_power_within_intercepted),
         cmocka_unit_test(test_sun_steps_are_continuous),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
