@@ -3,7 +3,8 @@
 # compare as ratios: each shadow method and each MS mode at 640x480 on the 8-ellipsoid benchmark cloud, against the
 # cheapest baseline (light.shadow=front, ms.mode=none: there is no shadow-free mode), and the sun pass (opacity map +
 # slab maps) per map size and per layer count, from frames that redo it (--sun-every-frame) minus frames that do
-# not. ROUNDS rounds run every configuration in turn (interleaved, so load drifts hit all alike); the table takes
+# not, and the energy closure with it on and off, the sun turning 0.01 deg a frame (closure measured once a degree)
+# and 2 deg a frame (measured every frame). ROUNDS rounds run every configuration in turn (interleaved, so load drifts hit all alike); the table takes
 # each configuration's median over the rounds. Writes build/bench/light.csv and build/bench/light.md.
 set -eu
 C=${CUMULO:-build/cumulo}
@@ -30,14 +31,22 @@ light.shadow=peel,quality.sun_map_size=256,+sun
 light.shadow=peel,light.sun_intervals=1
 light.shadow=peel,light.sun_intervals=1,+sun
 light.shadow=peel,light.sun_intervals=3
-light.shadow=peel,light.sun_intervals=3,+sun'
+light.shadow=peel,light.sun_intervals=3,+sun
+light.shadow=peel,ms.closure=off,+sun
+light.shadow=peel,ms.closure=on,+sun
+light.shadow=peel,ms.closure=off,+fast
+light.shadow=peel,ms.closure=on,+fast'
 r=0
 while [ $r -lt "$ROUNDS" ]; do
   r=$((r + 1))
   echo "$configs" | while IFS= read -r cfg; do
     set --
     for kv in $(echo "$cfg" | tr ',' ' '); do
-      if [ "$kv" = "+sun" ]; then set -- "$@" --sun-every-frame; else set -- "$@" --set "$kv"; fi
+      case $kv in
+        +sun) set -- "$@" --sun-every-frame ;;  # the sun turns 0.01 deg a frame
+        +fast) set -- "$@" --sun-step 2 ;;      # 2 deg a frame: the closure is measured again every frame
+        *) set -- "$@" --set "$kv" ;;
+      esac
     done
     "$C" bench "$S" --frames "$FRAMES" --warmup 2 --csv "$CSV" "$@" | grep '^\[' | sed "s/^/round $r: /"
   done

@@ -691,7 +691,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (r->sun_dirty) {
         sun_pass(r);
         cu_bind_cloud_textures(r);
-        cu_energy_update(r); /* the closure's views need the new sun and slab maps */
+        cu_energy_update(r); /* the closure's views need the new sun and slab maps (redone when the sun moved 1 deg) */
     }
 
     /* Camera in cloud-local coordinates: the big world offset is removed in double precision on the CPU. */

@@ -53,6 +53,8 @@ struct cu_renderer {
 
     GLuint prog_energy, energy_tex, energy_fbo; /* the slab model's energy closure (energy.c) */
     double ms_gain[2];                 /* its gains on multiple scattering reflected and transmitted, <= 1 */
+    int energy_valid;                  /* the gains were measured for these clouds... */
+    vec3 energy_sun;                   /* ...and this sun direction */
     double energy_ss_w[8];             /* its weights for single scattering per band of angles (energy.c) */
     double energy_in, energy_ss, energy_ms[2], energy_ms_budget[2]; /* its last powers (m^2 x sun irradiance):
                                           intercepted (delta-M), single, multiple reflected and transmitted, and what

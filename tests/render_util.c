@@ -46,6 +46,12 @@ int tr_render_scene(tr_ctx *c, const cu_scene *s)
         snprintf(c->err, sizeof c->err, "%s", e.msg);
         return 1;
     }
+    return tr_render_again(c);
+}
+
+int tr_render_again(tr_ctx *c)
+{
+    cu_error e;
     unsigned fbo;
     int w, h;
     c->be->frame(c->disp, &fbo, &w, &h);

@@ -23,6 +23,8 @@ int tr_open(tr_ctx *c, const cu_display_backend *be, int w, int h, int linear);
 int tr_render(tr_ctx *c, const char *scene, const char *const *sets);
 /* Moves the camera of the current scene and renders again (used for continuity sweeps). */
 int tr_render_scene(tr_ctx *c, const cu_scene *s);
+/* Renders the current scene again (after cu_renderer_set_sun, say). */
+int tr_render_again(tr_ctx *c);
 int tr_read_rgbf(tr_ctx *c, float *rgb);      /* top row first, w*h*3 */
 int tr_read_rgba8(tr_ctx *c, uint8_t *rgba);  /* top row first, w*h*4 */
 void tr_close(tr_ctx *c);

@@ -24,6 +24,7 @@ int cmd_bench(int argc, char **argv)
 {
     cli_opts o = {0};
     int frames = 30, warmup = 3, sun_every_frame = 0;
+    double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
     const char *csv = NULL;
     for (int i = 1; i < argc; i++) {
         int c = cli_common_option(&o, argc, argv, &i);
@@ -42,6 +43,15 @@ int cmd_bench(int argc, char **argv)
             i++;
         } else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) {
             csv = argv[++i];
+        } else if (strcmp(argv[i], "--sun-step") == 0 && i + 1 < argc) {
+            char *end;
+            sun_step = strtod(argv[i + 1], &end);
+            if (*end || !(sun_step > 0) || sun_step > 360) {
+                fprintf(stderr, "cumulo bench: --sun-step expects degrees in (0, 360], got '%s'\n", argv[i + 1]);
+                return 2;
+            }
+            sun_every_frame = 1;
+            i++;
         } else if (strcmp(argv[i], "--sun-every-frame") == 0) {
             sun_every_frame = 1; /* measure the sun pass too, as when a knob turns the sun */
         } else if (argv[i][0] == '-') {
@@ -56,7 +66,7 @@ int cmd_bench(int argc, char **argv)
     }
     if (!o.scene_path) {
         fprintf(stderr, "usage: cumulo bench SCENE [--frames N] [--warmup N] [--size WxH] [--backend B] "
-                        "[--set k=v]... [--csv FILE] [--sun-every-frame]\n");
+                        "[--set k=v]... [--csv FILE] [--sun-every-frame] [--sun-step DEG]\n");
         return 2;
     }
     cli_session s;
@@ -87,7 +97,7 @@ int cmd_bench(int argc, char **argv)
     for (int i = 0; i < warmup + frames; i++) {
         if (sun_every_frame) {
             cu_error e;
-            cu_renderer_set_sun(s.r, el, az + 0.01 * i, &e);
+            cu_renderer_set_sun(s.r, el, az + sun_step * i, &e);
         }
         double t0 = now_ms();
         if (cli_session_render(&s)) {
@@ -106,8 +116,8 @@ int cmd_bench(int argc, char **argv)
     int n = snprintf(opts, sizeof opts, "size=%dx%d", s.width, s.height);
     for (int i = 0; i < o.nsets && n < (int)sizeof opts - 2; i++)
         n += snprintf(opts + n, sizeof opts - (size_t)n, ":%s", o.sets[i]);
-    if (sun_every_frame && n < (int)sizeof opts - 20)
-        snprintf(opts + n, sizeof opts - (size_t)n, ":sun-every-frame");
+    if (sun_every_frame && n < (int)sizeof opts - 40)
+        snprintf(opts + n, sizeof opts - (size_t)n, sun_step == 0.01 ? ":sun-every-frame" : ":sun-step=%g", sun_step);
     const char *base = strrchr(o.scene_path, '/');
     base = base ? base + 1 : o.scene_path;
     printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts, 1000.0 / med, med, p95,
