@@ -10,34 +10,38 @@
  * cloud.frag with ENERGY_PASS) from EN_VIEWS directions in bands of the scattering angle about the sun. Radiance
  * times pixel footprint summed over a view is the radiant intensity toward that direction; each view stands for its
  * cell of the sphere of directions:
- *   - multiple scattering (P_ms): intensity x the cell's solid angle;
+ *   - multiple scattering, reflected and transmitted apart (the eye on the lit side of the fitted slab or not):
+ *     intensity x the cell's solid angle (P_r, P_t);
  *   - single scattering (P_ss): the intensity is the phase function P~(Theta) times a factor smooth in direction, so
  *     it is weighted by the integral of P~ over the cell over P~ at the view (a plain rule put the forward lobe's
- *     peak on a whole cell: +25 % for the thin layer of scenes/glory.scene);
- *   - from the sun (the view at Theta = 180 deg), per column of optical depth tau: what the chopped medium
- *     intercepts, 1 - e^-(1-f) tau (P_in), and what a slab of that optical depth lit straight on leaves to orders
- *     2+ (B_ms, the slab tables' own budget: cu_slab_model_ms_available).
- * Multiple scattering is scaled by gain = min(1, B_ms / P_ms, (P_in - P_ss) / P_ms): the column budget alone let a
- * sphere's total exceed P_in by 1.6 % (its single scattering is larger than a slab's), the total alone would let
- * errors of P_ss decide. A cloud within both budgets is left alone. The forward peak is left out on both sides (its
- * energy is exact by construction, cloud.frag). One gain per scene: a field of clouds shares it.
+ *     peak on a whole cell: +25 % for the thin layer of scenes/glory.scene).
+ * A budget view from the sun (EN_SUN_SIZE square) gives per column its optical depth tau and the sun's angle thL to
+ * the slab fitted where it enters: what the chopped medium intercepts, 1 - e^-(1-f) tau (P_in), and what a slab of
+ * thickness tau cos(thL) lit at thL reflects and transmits by multiple scattering (B_r, B_t: the tables' own budget,
+ * cu_slab_model_ms_budget). Reflected and transmitted light are each scaled down to their budget, then both together
+ * to what single scattering leaves, P_in - P_ss. (The column budget alone let a sphere's total exceed P_in by 1.6 %,
+ * its single scattering being larger than a slab's; the total alone would let the errors of P_ss decide, and a
+ * single gain darkened the thick base of scenes/sweep_thick_below.scene, whose transmitted light was within budget.)
+ * A cloud within its budgets is left alone; a wide flat cloud keeps gains 1. The forward peak is left out on both
+ * sides (its energy is exact by construction, cloud.frag). One pair of gains per scene: a field of clouds shares it.
  *
- * Cost: EN_VIEWS x 24 x 24 + 96 x 96 = 31k cloud fragments and two read-backs (bench_e8 at 640x480 on llvmpipe:
- * +53 ms on a 259 ms frame that redoes the sun pass), only when the clouds change or the sun has moved by 1 deg. */
+ * Cost: EN_VIEWS x 16 x 16 + 64 x 64 = 11k cloud fragments and two read-backs (bench_e8 at 640x480 on llvmpipe:
+ * about +10 % on a frame that redoes the sun pass: scripts/bench_light.sh), only when the clouds change or the sun
+ * has moved by 1 deg. With 24 x 24 views, 6 azimuths and a 96 x 96 budget view the gains moved by at most 0.03. */
 #include "energy.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#define EN_SIZE 24
-#define EN_SUN_SIZE 96 /* the budget view from the sun: its columns set the budgets, so finer (silhouette ~0.1 %) */
+#define EN_SIZE 16
+#define EN_SUN_SIZE 64 /* the budget view from the sun: its columns set the budgets, so finer (silhouette ~0.1 %) */
 #define EN_BANDS 8
-#define EN_VIEWS 38
+#define EN_VIEWS 26
 #define EN_DIST 64.0 /* camera distance in bounding radii: rays parallel to 1/64 rad, footprints equal to 1.6 % */
-/* bands of the scattering angle (degrees) and views per band: a cap at each pole, six azimuths between */
+/* bands of the scattering angle (degrees) and views per band: a cap at each pole, four azimuths between */
 static const double BAND_EDGE[EN_BANDS + 1] = {0, 15, 40, 65, 90, 115, 140, 165, 180};
-static const int BAND_NPHI[EN_BANDS] = {1, 6, 6, 6, 6, 6, 6, 1};
-typedef char band_views_add_up[1 + 6 * 6 + 1 == EN_VIEWS ? 1 : -1];
+static const int BAND_NPHI[EN_BANDS] = {1, 4, 4, 4, 4, 4, 4, 1};
+typedef char band_views_add_up[1 + 6 * 4 + 1 == EN_VIEWS ? 1 : -1];
 typedef char band_weights_fit[EN_BANDS <= (int)(sizeof(((cu_renderer *)0)->energy_ss_w) / sizeof(double)) ? 1 : -1];
 
 static double band_node(int b) /* the view's scattering angle in band b, radians: the poles, else mid-cosine */
