@@ -10,7 +10,7 @@ GPIOD_VERSION := $(shell $(PKG) --modversion libgpiod 2>/dev/null)
 ifneq ($(GPIOD_VERSION),)
 PLATFORM_SRCS   += platform/gpio.c
 PLATFORM_CFLAGS += -DCU_HAVE_GPIOD $(call pc_cflags,libgpiod)
-PLATFORM_LIBS   += $(call pc_libs,libgpiod)
+PLATFORM_LIBS   += $(call pc_libs,libgpiod) -pthread
 ifneq ($(filter 2 3 4 5 6 7 8 9,$(firstword $(subst ., ,$(GPIOD_VERSION)))),)
 PLATFORM_CFLAGS += -DCU_GPIOD_V2
 endif
@@ -107,7 +107,7 @@ ifeq ($(firstword $(subst ., ,$(GPIOD_VERSION))),1)
 $(B)/test_gpio_v1: platform/test_gpio.c platform/gpio.c platform/gpio.h platform/quadrature.c platform/input.c
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS_COMMON) -Iplatform $(call pc_cflags,cmocka libgpiod) -o $@ platform/test_gpio.c \
-	  platform/quadrature.c platform/input.c $(call pc_libs,cmocka) $(LDLIBS_COMMON)
+	  platform/quadrature.c platform/input.c $(call pc_libs,cmocka) $(LDLIBS_COMMON) -pthread
 CHECK_TESTS += $(B)/test_gpio_v1
 endif
 

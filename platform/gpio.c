@@ -1,19 +1,24 @@
 /* platform/gpio.c: libgpiod glue for the rotary encoder and button (v1 API for Debian 12's libgpiod 1.6, v2 API when
- * built against libgpiod 2.x); edges are timestamp-ordered and decoded by quadrature.c. */
+ * built against libgpiod 2.x); edges are timestamp-ordered and decoded by quadrature.c. With v1 a reader thread
+ * drains the kernel's per-line queues as edges come (they hold 16 events each), so a long frame loses none. */
 #include "gpio.h"
 #include "quadrature.h"
 #include <errno.h>
 #ifndef CU_TEST_GPIOD_DECLARED /* test_gpio_v2.c declares the v2 API itself to test this file without libgpiod 2 */
 #include <gpiod.h>
 #endif
+#include <fcntl.h>
 #include <poll.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #define CONSUMER "cumulo"
 #define MAX_EDGES 256
+#define RING_EDGES 4096 /* v1: edges the reader thread holds for the main loop (minutes of turning at frame rate) */
 
 enum { LINE_A, LINE_B, LINE_BUTTON, LINE_COUNT };
 
@@ -33,6 +38,19 @@ struct cu_gpio {
 #else
     struct gpiod_line *line[LINE_COUNT];
     struct gpiod_line_bulk bulk;
+    /* The v1 uAPI queues 16 events per line in the kernel, fixed: a frame that takes longer than a few detents
+     * (a Pi with heavy settings, the VM test under emulation) overflowed it and lost detents. A reader thread
+     * moves edges from the kernel into `ring` as they come; `wake` tells the main loop's poll that edges wait. */
+    pthread_t reader;
+    int reader_on;
+    int wake[2], stop[2];   /* pipes: reader -> main loop (edges queued), main -> reader (quit) */
+    pthread_mutex_t mu;     /* guards ring, ring_n, ring_lost, reader_failed, reader_err */
+    int mu_on;
+    cu_quad_edge ring[RING_EDGES];
+    size_t ring_n;
+    unsigned long ring_lost;
+    int reader_failed;
+    char reader_err[256];
 #endif
 };
 
@@ -168,9 +186,9 @@ static struct gpiod_line_request *request(cu_gpio *g, const cu_input_spec *spec,
             gpiod_line_settings_set_debounce_period_us(s[k], k == 0 ? us : (us > 5000 ? us : 5000));
         }
         gpiod_request_config_set_consumer(rc, CONSUMER);
-        /* The kernel queues edges while a frame renders; a slow frame (a Pi, or the VM test under emulation, where
-         * the slab model's sun pass made frames seconds long) must not overflow the queue and lose a detent: 64
-         * events lost one in 48 bouncy edges there. 1024 is the kernel's cap (it clamps larger requests). */
+        /* The kernel queues edges while a frame renders (v2 needs no reader thread): a slow frame (a Pi, or the VM
+         * under emulation, where a frame takes seconds) must not overflow the queue and lose a detent; the default
+         * is 16 per line. 1024 is the kernel's cap (it clamps larger requests). */
         gpiod_request_config_set_event_buffer_size(rc, 1024);
         if (gpiod_line_config_add_line_settings(lc, g->offset, 2, enc) == 0 &&
             (g->nlines < 3 || gpiod_line_config_add_line_settings(lc, &g->offset[LINE_BUTTON], 1, btn) == 0))
@@ -303,6 +321,8 @@ static int resolve(cu_gpio *g, int i, const char *name, char *err, size_t errlen
     return 0;
 }
 
+static int start_reader(cu_gpio *g, char *err, size_t errlen);
+
 static int request(cu_gpio *g, int bias)
 {
     struct gpiod_line_request_config cfg = {
@@ -348,18 +368,18 @@ static int open_lines(cu_gpio *g, const cu_input_spec *spec, char *err, size_t e
     if (spec->debounce_us > 0)
         snprintf(g->note, sizeof g->note, "gpio: libgpiod v1 has no kernel debounce; debounce=%d ignored, the "
                  "decoder rejects bounce itself", spec->debounce_us);
-    return 0;
+    return start_reader(g, err, errlen);
 }
 
 int cu_gpio_fds(const cu_gpio *g, int *fds, int max)
 {
-    int n = 0;
-    for (int i = 0; i < g->nlines && n < max; i++)
-        fds[n++] = gpiod_line_event_get_fd(g->line[i]);
-    return n;
+    if (max < 1)
+        return 0;
+    fds[0] = g->wake[0]; /* readable while the reader thread holds edges */
+    return 1;
 }
 
-static int read_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, size_t errlen)
+static int read_kernel_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, size_t errlen)
 {
     /* v1 keeps one event queue per line: drain each (poll first, the read would block), then the caller sorts
      * by timestamp to restore the order in which the contacts really moved. */
@@ -395,8 +415,149 @@ static int read_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, siz
     return 0;
 }
 
+/* The reader drains line A's queue, then B's: an A edge that arrives in between would come in the next batch, after
+ * a newer B edge of this one. So only edges older than the drain's start (less HOLD_NS, for the kernel's interrupt
+ * thread still queueing) go to the main loop; newer ones are held and sorted into the next batch, which comes with
+ * the next edge or after HOLD_MS. */
+#define HOLD_NS 1000000u
+#define HOLD_MS 3
+
+static void *reader_main(void *arg)
+{
+    cu_gpio *g = arg;
+    cu_quad_edge e[2 * MAX_EDGES];
+    size_t held = 0;
+    for (;;) {
+        struct pollfd p[LINE_COUNT + 1];
+        int n = 0;
+        for (int i = 0; i < g->nlines; i++) {
+            p[n].fd = gpiod_line_event_get_fd(g->line[i]);
+            p[n++].events = POLLIN;
+        }
+        p[n].fd = g->stop[0];
+        p[n++].events = POLLIN;
+        if (poll(p, (nfds_t)n, held ? HOLD_MS : -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            pthread_mutex_lock(&g->mu);
+            g->reader_failed = 1;
+            snprintf(g->reader_err, sizeof g->reader_err, "gpio: waiting for %s failed (%s): continuing without "
+                     "the knob", g->chip_name, strerror(errno));
+            pthread_mutex_unlock(&g->mu);
+            break;
+        }
+        if (p[n - 1].revents)
+            break; /* cu_gpio_close */
+        uint64_t t0 = now_ns();
+        size_t ne = 0;
+        char err[256];
+        int rc = read_kernel_edges(g, e + held, &ne, err, sizeof err);
+        ne += held;
+        cu_quad_sort_edges(e, ne);
+        /* release what is older than the cut; everything when stamps are not on this clock (v1 on kernels before
+         * 5.7 stamps with CLOCK_REALTIME), when the hold would overflow, or when the reader stops */
+        uint64_t cut = t0 - HOLD_NS;
+        size_t out = 0;
+        while (out < ne && e[out].t_ns <= cut)
+            out++;
+        if (rc || ne > MAX_EDGES || (ne && e[ne - 1].t_ns > t0 + 1000000000u))
+            out = ne;
+        pthread_mutex_lock(&g->mu);
+        for (size_t k = 0; k < out; k++) {
+            if (g->ring_n < RING_EDGES)
+                g->ring[g->ring_n++] = e[k];
+            else
+                g->ring_lost++; /* the main loop stalled for minutes: the level sample resynchronises */
+        }
+        if (rc) {
+            g->reader_failed = 1;
+            snprintf(g->reader_err, sizeof g->reader_err, "%s", err);
+        }
+        pthread_mutex_unlock(&g->mu);
+        held = ne - out;
+        memmove(e, e + out, held * sizeof *e);
+        if (out || rc) {
+            char c = 1;
+            if (write(g->wake[1], &c, 1) < 0 && errno != EAGAIN) {
+                /* the pipe is full (EAGAIN) when the main loop already has a wake-up pending: nothing to do */
+            }
+        }
+        if (rc)
+            break;
+    }
+    return NULL;
+}
+
+/* The edges the reader thread collected (up to MAX_EDGES; the wake pipe stays readable while more wait). */
+static int read_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, size_t errlen)
+{
+    char buf[64];
+    while (read(g->wake[0], buf, sizeof buf) > 0) {
+    }
+    pthread_mutex_lock(&g->mu);
+    size_t take = g->ring_n < MAX_EDGES ? g->ring_n : MAX_EDGES;
+    memcpy(edges, g->ring, take * sizeof *edges);
+    memmove(g->ring, g->ring + take, (g->ring_n - take) * sizeof *edges);
+    g->ring_n -= take;
+    int failed = g->reader_failed && take == 0;
+    if (failed)
+        snprintf(err, errlen, "%s", g->reader_err);
+    if (g->ring_n) {
+        char c = 1;
+        if (write(g->wake[1], &c, 1) < 0 && errno != EAGAIN) {
+            /* as in reader_main */
+        }
+    }
+    pthread_mutex_unlock(&g->mu);
+    *n = take;
+    return failed;
+}
+
+static int start_reader(cu_gpio *g, char *err, size_t errlen)
+{
+    g->wake[0] = g->wake[1] = g->stop[0] = g->stop[1] = -1;
+    if (pipe(g->wake) || pipe(g->stop)) {
+        snprintf(err, errlen, "gpio: cannot make a pipe: %s", strerror(errno));
+        return 1;
+    }
+    for (int i = 0; i < 2; i++) {
+        fcntl(g->wake[i], F_SETFL, O_NONBLOCK);
+        fcntl(g->wake[i], F_SETFD, FD_CLOEXEC);
+        fcntl(g->stop[i], F_SETFD, FD_CLOEXEC);
+    }
+    if (pthread_mutex_init(&g->mu, NULL)) {
+        snprintf(err, errlen, "gpio: cannot make a mutex");
+        return 1;
+    }
+    g->mu_on = 1;
+    int e = pthread_create(&g->reader, NULL, reader_main, g);
+    if (e) {
+        snprintf(err, errlen, "gpio: cannot start the reader thread: %s", strerror(e));
+        return 1;
+    }
+    g->reader_on = 1;
+    return 0;
+}
+
 static void release(cu_gpio *g)
 {
+    if (g->reader_on) {
+        char c = 1;
+        if (write(g->stop[1], &c, 1) != 1) {
+            /* a pipe of our own with nothing in it: cannot fail short of a bug; join would then block */
+        }
+        pthread_join(g->reader, NULL);
+        g->reader_on = 0;
+    }
+    for (int i = 0; i < 2; i++) {
+        if (g->wake[i] >= 0) close(g->wake[i]);
+        if (g->stop[i] >= 0) close(g->stop[i]);
+        g->wake[i] = g->stop[i] = -1;
+    }
+    if (g->mu_on) {
+        pthread_mutex_destroy(&g->mu);
+        g->mu_on = 0;
+    }
     if (g->chip) {
         if (g->bulk.num_lines)
             gpiod_line_release_bulk(&g->bulk);
@@ -415,6 +576,9 @@ int cu_gpio_open(cu_gpio **out, const cu_input_spec *spec, char *err, size_t err
     }
     snprintf(g->chip_name, sizeof g->chip_name, "%s", spec->chip);
     g->nlines = spec->button[0] ? 3 : 2;
+#ifndef CU_GPIOD_V2
+    g->wake[0] = g->wake[1] = g->stop[0] = g->stop[1] = -1; /* release() closes only what was opened */
+#endif
     errno = 0;
     if (open_lines(g, spec, err, errlen)) {
         release(g);

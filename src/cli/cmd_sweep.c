@@ -56,6 +56,7 @@ static const knob KNOBS[] = {
     {"ms.mode", 2, 4, {"none", "octaves", "slab", "collector"}, {1, 0, 1, 0}},
     {"ms.blur", 1, 3, {"100", "200", "400"}, {0}},
     {"ms.sky_light", 1, 2, {"off", "on"}, {0}},
+    {"ms.closure", 1, 2, {"off", "on"}, {0}},
     {"quality.integration", 0, 2, {"exponential", "kol"}, {0}},
     {"cloud.phase", 0, 3, {"mie", "hg", "cornette-shanks"}, {0}},
     {"output.scale", 2, 3, {"0.5", "0.75", "1"}, {1, 0, 1}},
