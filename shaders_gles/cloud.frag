@@ -53,6 +53,7 @@ uniform vec3 u_sky_rad;        // mean radiance of the sky (upper hemisphere)
 uniform vec3 u_ground_rad;     // radiance of the ground (lower hemisphere; the sky colour for a constant sky)
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
 uniform float u_ms_g;          // anisotropy of the octave phase functions
+uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (renderer.c: out_scale)
 out vec4 o_color;
 
 
@@ -309,5 +310,5 @@ void main()
 #if MS_MODE >= 2
     L += vec3(dot(u_ms_gain, Lms));
 #endif
-    o_color = vec4(u_sun_irr * L + amb, alpha);
+    o_color = vec4((u_sun_irr * L + amb) * u_out_scale, alpha);
 }

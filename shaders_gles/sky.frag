@@ -8,6 +8,7 @@ uniform vec3 u_sun_dir;
 uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
 uniform float u_sun_disk_max;  // radiance cap of the disk (fp16 targets overflow at 65504)
 uniform vec3 u_ground;         // ground radiance
+uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (renderer.c: out_scale)
 #if SKY_CONSTANT
 uniform vec3 u_sky_color;
 #else
@@ -56,5 +57,5 @@ void main()
         if (dot(dir, u_sun_dir) > 0.99998917)
             L += min(u_sun_irr / 6.8e-5, vec3(u_sun_disk_max));
     }
-    o_color = vec4(L, 1.0);
+    o_color = vec4(L * u_out_scale, 1.0);
 }

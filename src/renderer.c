@@ -632,6 +632,17 @@ static int camera_inside_hull(const cu_renderer *r, vec3 cam, double znear)
     return 0;
 }
 
+/* What the sky and cloud passes multiply their radiance by. A float HDR target stores radiance and the tone mapper
+ * applies exposure and white balance; an RGBA8 target (GLES 3.0 without EXT_color_buffer_*float) holds only 0..1,
+ * so there the passes store exposed, white-balanced values and the tone mapper gets 1 and 1: highlights beyond the
+ * display's white clip, the rest is as with a float target. (Storing radiance, as before, clipped the whole sky to
+ * 1 and the picture came out one flat grey.) */
+static void out_scale(const cu_renderer *r, float s[3])
+{
+    for (int c = 0; c < 3; c++)
+        s[c] = r->hdr_format == GL_RGBA8 ? (float)(r->scene.exposure / r->white[c]) : 1.0f;
+}
+
 void cu_set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, const float *inv_vp)
 {
     cu_gl *gl = &r->gl;
@@ -659,6 +670,9 @@ void cu_set_cloud_uniforms(cu_renderer *r, GLuint p, vec3 cam, const float *vp, 
     gl->Uniform3f(gl->GetUniformLocation(p, "u_peak_f"), (float)r->peak_f[0], (float)r->peak_f[1],
                   (float)r->peak_f[2]);
     gl->Uniform2f(gl->GetUniformLocation(p, "u_ms_gain"), (float)r->ms_gain[0], (float)r->ms_gain[1]);
+    float os[3];
+    out_scale(r, os);
+    gl->Uniform3f(gl->GetUniformLocation(p, "u_out_scale"), os[0], os[1], os[2]);
 }
 
 void cu_bind_cloud_textures(cu_renderer *r)
@@ -734,6 +748,9 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
                   r->hdr_format == GL_RGBA32F ? 1e30f : r->hdr_format == GL_RGBA16F ? 60000.0f : 1e4f);
     gl->Uniform3f(gl->GetUniformLocation(r->prog_sky, "u_ground"), (float)r->sky.ground[0], (float)r->sky.ground[1],
                   (float)r->sky.ground[2]);
+    float os[3];
+    out_scale(r, os);
+    gl->Uniform3f(gl->GetUniformLocation(r->prog_sky, "u_out_scale"), os[0], os[1], os[2]);
     if (s->sky_model == CU_SKY_CONSTANT) {
         gl->Uniform3f(gl->GetUniformLocation(r->prog_sky, "u_sky_color"), (float)s->sky_color[0],
                       (float)s->sky_color[1], (float)s->sky_color[2]);
@@ -801,8 +818,10 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, r->hdr_tex);
     gl->Uniform1i(gl->GetUniformLocation(fp, "u_hdr"), 0);
-    gl->Uniform1f(gl->GetUniformLocation(fp, "u_exposure"), (float)s->exposure);
-    gl->Uniform3f(gl->GetUniformLocation(fp, "u_white"), (float)r->white[0], (float)r->white[1], (float)r->white[2]);
+    int pre = r->hdr_format == GL_RGBA8; /* the passes applied exposure and white already (out_scale) */
+    gl->Uniform1f(gl->GetUniformLocation(fp, "u_exposure"), pre ? 1.0f : (float)s->exposure);
+    gl->Uniform3f(gl->GetUniformLocation(fp, "u_white"), pre ? 1.0f : (float)r->white[0], pre ? 1.0f : (float)r->white[1],
+                  pre ? 1.0f : (float)r->white[2]);
     gl->BindVertexArray(r->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);

@@ -52,3 +52,8 @@ $(B)/test_ms: tests/test_ms.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumul
 	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
 CHECK_TESTS += $(B)/test_ms
 CHECK_TESTS += tests/test_ms_slab.sh
+
+$(B)/test_fallback: tests/test_fallback.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
+	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_fallback.c tests/render_util.c $(HEADLESS_SRCS) \
+	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
+CHECK_TESTS += $(B)/test_fallback
