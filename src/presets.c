@@ -6,15 +6,17 @@ static const char *const SETTINGS[CU_PRESET_COUNT] = {
     /* high: the defaults */
     "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
-    "light.sun_samples=32;ms.mode=slab;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    "light.sun_samples=32;ms.mode=slab;ms.blur=200;ms.sky_light=on;ms.closure=on;"
+    "quality.integration=exponential",
     /* medium */
     "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
-    "light.sun_samples=32;ms.mode=none;ms.blur=200;ms.sky_light=on;quality.integration=exponential",
+    "light.sun_samples=32;ms.mode=octaves;ms.blur=200;ms.sky_light=on;ms.closure=on;"
+    "quality.integration=exponential",
     /* low */
-    "quality.segments=2;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
-    "quality.noise_octaves=4;quality.sun_map_size=128;light.shadow=front;light.sun_intervals=3;"
-    "light.sun_samples=32;ms.mode=none;ms.blur=100;ms.sky_light=off;quality.integration=kol",
+    "quality.segments=2;quality.segment_ratio=2.2;quality.hull_tessellation=6;quality.max_intervals=6;"
+    "quality.noise_octaves=4;quality.sun_map_size=64;light.shadow=front;light.sun_intervals=3;"
+    "light.sun_samples=32;ms.mode=none;ms.blur=400;ms.sky_light=on;ms.closure=on;quality.integration=kol",
 };
 
 const char *cu_preset_settings(cu_preset p)
