@@ -54,36 +54,28 @@ static double band_node(int b) /* the view's scattering angle in band b, radians
     return acos(0.5 * (m0 + m1));
 }
 
+/* P~ (green) at scattering angle x radians, linear between the table's nodes (as cloud.frag's phase_table) */
+static double phase_at(const cu_phase_table *t, double x)
+{
+    double u = x / CU_PI * (t->n - 1);
+    int j = u >= t->n - 1 ? t->n - 2 : (int)u;
+    return t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
+}
+
 void cu_energy_phase_weights(cu_renderer *r, const cu_phase_table *t)
 {
-    /* trapezoids of P~ sin(Theta) over the table's grid (0.088 deg), cut at the band edges */
+    double h = CU_PI / (t->n - 1);
     for (int b = 0; b < EN_BANDS; b++) {
-        double a = BAND_EDGE[b] * CU_PI / 180, z = BAND_EDGE[b + 1] * CU_PI / 180, h = CU_PI / (t->n - 1), sum = 0;
-        double prev_x = a, prev_f = 0;
-        for (int i = 0; i <= t->n; i++) {
-            double x = i < t->n ? i * h : z;
-            if (x <= a)
-                continue;
-            if (x > z)
-                x = z;
-            double u = x / h;
-            int j = u >= t->n - 1 ? t->n - 2 : (int)u;
-            double p = t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
-            double fx = p * sin(x);
-            if (prev_x == a) {
-                double ua = a / h;
-                int ja = ua >= t->n - 1 ? t->n - 2 : (int)ua;
-                prev_f = (t->rgb[3 * ja + 1] + (ua - ja) * (t->rgb[3 * (ja + 1) + 1] - t->rgb[3 * ja + 1])) * sin(a);
-            }
+        /* trapezoids of P~ sin(Theta) on the table's grid (0.088 deg), cut at the band edges a and z */
+        double a = BAND_EDGE[b] * CU_PI / 180, z = BAND_EDGE[b + 1] * CU_PI / 180, sum = 0;
+        double prev_x = a, prev_f = phase_at(t, a) * sin(a);
+        for (int i = (int)floor(a / h) + 1; prev_x < z; i++) {
+            double x = fmin(i * h, z), fx = phase_at(t, x) * sin(x);
             sum += 0.5 * (fx + prev_f) * (x - prev_x);
             prev_x = x;
             prev_f = fx;
-            if (x >= z)
-                break;
         }
-        double th = band_node(b), u = th / h;
-        int j = u >= t->n - 1 ? t->n - 2 : (int)u;
-        double p_node = t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
+        double p_node = phase_at(t, band_node(b));
         /* per view: the band's integral of P~ shared by its views, over P~ at the view */
         r->energy_ss_w[b] = p_node > 0 ? 2.0 * CU_PI * sum / BAND_NPHI[b] / p_node : 0.0;
     }
@@ -192,7 +184,13 @@ void cu_energy_update(cu_renderer *r)
         float vpf[16], inv[16];
         m4_to_float(vp, vpf);
         m4_to_float(m4_inverse(vp), inv);
-        cu_set_cloud_uniforms(r, r->prog_energy, cam, vpf, inv);
+        if (k == 0) { /* everything but the camera is the same for all views */
+            cu_set_cloud_uniforms(r, r->prog_energy, cam, vpf, inv);
+        } else {
+            gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_energy, "u_viewproj"), 1, GL_FALSE, vpf);
+            gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_energy, "u_inv_viewproj"), 1, GL_FALSE, inv);
+            gl->Uniform3f(gl->GetUniformLocation(r->prog_energy, "u_cam"), (float)cam.x, (float)cam.y, (float)cam.z);
+        }
         gl->Uniform1i(budget_loc, k == EN_VIEWS);
         gl->Viewport(EN_SIZE * k, 0, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
@@ -251,12 +249,6 @@ void cu_energy_update(cu_renderer *r)
     }
     r->ms_gain[0] = g_r;
     r->ms_gain[1] = g_t;
-    r->energy_in = p_in;
-    r->energy_ss = p_ss;
-    r->energy_ms[0] = p_r;
-    r->energy_ms[1] = p_t;
-    r->energy_ms_budget[0] = b_r;
-    r->energy_ms_budget[1] = b_t;
     cu_log(r, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple reflected %.4g of %.4g, "
            "transmitted %.4g of %.4g: gains %.4f %.4f", p_in, p_ss, p_r, b_r, p_t, b_t, g_r, g_t);
 }

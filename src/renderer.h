@@ -56,9 +56,6 @@ struct cu_renderer {
     int energy_valid;                  /* the gains were measured for these clouds... */
     vec3 energy_sun;                   /* ...and this sun direction */
     double energy_ss_w[8];             /* its weights for single scattering per band of angles (energy.c) */
-    double energy_in, energy_ss, energy_ms[2], energy_ms_budget[2]; /* its last powers (m^2 x sun irradiance):
-                                          intercepted (delta-M), single, multiple reflected and transmitted, and what
-                                          those may carry */
     GLuint hdr_fbo, hdr_tex, hdr_depth;
     int hdr_w, hdr_h;
     GLenum hdr_format;

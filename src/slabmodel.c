@@ -136,37 +136,6 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
         }
 }
 
-void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double thl, double *up, double *down)
-{
-    *up = *down = 0;
-    if (!(t > 0) || m->nt < 1 || m->nl < 1)
-        return;
-    int k = 0, k1 = 0, il = 0, il1 = 0;
-    double wt = 0, wl = 0, s = 1;
-    if (t <= m->t[0]) {
-        s = (t / m->t[0]) * (t / m->t[0]);
-    } else if (t >= m->t[m->nt - 1]) {
-        k = k1 = m->nt - 1;
-    } else {
-        while (k + 2 < m->nt && t > m->t[k + 1])
-            k++;
-        k1 = k + 1;
-        wt = log(t / m->t[k]) / log(m->t[k1] / m->t[k]);
-    }
-    if (thl >= m->thl[m->nl - 1]) {
-        il = il1 = m->nl - 1;
-    } else if (thl > m->thl[0]) {
-        while (il + 2 < m->nl && thl > m->thl[il + 1])
-            il++;
-        il1 = il + 1;
-        wl = (thl - m->thl[il]) / (m->thl[il1] - m->thl[il]);
-    }
-#define LERP2(a) (((1 - wt) * ((1 - wl) * a[k][il] + wl * a[k][il1]) + wt * ((1 - wl) * a[k1][il] + wl * a[k1][il1])) * s)
-    *up = LERP2(m->ms_up);
-    *down = LERP2(m->ms_down);
-#undef LERP2
-}
-
 /* Storage for one parsed value: which field, group, thickness node and angle node. */
 typedef struct { int field, group, it, in; double value; int line; } entry;
 
@@ -381,6 +350,30 @@ static double group_at_node(const cu_slab_model *m, int g, int k, double d, doub
     double v00 = node_value(m, g, k, iv, il, d, p), v10 = node_value(m, g, k, iv + 1, il, d, p);
     double v01 = node_value(m, g, k, iv, il1, d, p), v11 = node_value(m, g, k, iv + 1, il1, d, p);
     return (1 - wl) * ((1 - wv) * v00 + wv * v10) + wl * ((1 - wv) * v01 + wv * v11);
+}
+
+void cu_slab_model_ms_budget(const cu_slab_model *m, double t, double thl, double *up, double *down)
+{
+    *up = *down = 0;
+    if (!(t > 0) || m->nt < 1 || m->nl < 1)
+        return;
+    /* thickness as in cu_slab_model_eval: linear in log t between nodes; t^2 below the first, constant above */
+    int k = 0, k1 = 0;
+    double wt = 0, wl, s = 1;
+    if (t <= m->t[0]) {
+        s = (t / m->t[0]) * (t / m->t[0]);
+    } else if (t >= m->t[m->nt - 1]) {
+        k = k1 = m->nt - 1;
+    } else {
+        k = bracket(m->t, m->nt, t, &wt);
+        k1 = k + 1;
+        wt = log(t / m->t[k]) / log(m->t[k1] / m->t[k]);
+    }
+    int il = bracket(m->thl, m->nl, thl, &wl), il1 = m->nl > 1 ? il + 1 : il;
+#define LERP2(a) (((1 - wt) * ((1 - wl) * a[k][il] + wl * a[k][il1]) + wt * ((1 - wl) * a[k1][il] + wl * a[k1][il1])) * s)
+    *up = LERP2(m->ms_up);
+    *down = LERP2(m->ms_down);
+#undef LERP2
 }
 
 double cu_slab_model_eval(const cu_slab_model *m, int first_group, double t, double d, double thv, double thl,
