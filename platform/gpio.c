@@ -44,11 +44,10 @@ struct cu_gpio {
     pthread_t reader;
     int reader_on;
     int wake[2], stop[2];   /* pipes: reader -> main loop (edges queued), main -> reader (quit) */
-    pthread_mutex_t mu;     /* guards ring, ring_n, ring_lost, reader_failed, reader_err */
+    pthread_mutex_t mu;     /* guards ring, ring_n, reader_failed, reader_err */
     int mu_on;
     cu_quad_edge ring[RING_EDGES];
     size_t ring_n;
-    unsigned long ring_lost;
     int reader_failed;
     char reader_err[256];
 #endif
@@ -422,6 +421,15 @@ static int read_kernel_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *e
 #define HOLD_NS 1000000u
 #define HOLD_MS 3
 
+/* Makes the main loop's poll return. A full pipe (EAGAIN) means a wake-up is already pending: nothing to do. */
+static void wake_main(cu_gpio *g)
+{
+    char c = 1;
+    if (write(g->wake[1], &c, 1) < 0 && errno != EAGAIN) {
+        /* a pipe of our own: no other failure short of a bug */
+    }
+}
+
 static void *reader_main(void *arg)
 {
     cu_gpio *g = arg;
@@ -464,10 +472,8 @@ static void *reader_main(void *arg)
             out = ne;
         pthread_mutex_lock(&g->mu);
         for (size_t k = 0; k < out; k++) {
-            if (g->ring_n < RING_EDGES)
+            if (g->ring_n < RING_EDGES) /* full: the main loop stalled for minutes; its level sample resynchronises */
                 g->ring[g->ring_n++] = e[k];
-            else
-                g->ring_lost++; /* the main loop stalled for minutes: the level sample resynchronises */
         }
         if (rc) {
             g->reader_failed = 1;
@@ -476,12 +482,8 @@ static void *reader_main(void *arg)
         pthread_mutex_unlock(&g->mu);
         held = ne - out;
         memmove(e, e + out, held * sizeof *e);
-        if (out || rc) {
-            char c = 1;
-            if (write(g->wake[1], &c, 1) < 0 && errno != EAGAIN) {
-                /* the pipe is full (EAGAIN) when the main loop already has a wake-up pending: nothing to do */
-            }
-        }
+        if (out || rc)
+            wake_main(g);
         if (rc)
             break;
     }
@@ -502,12 +504,8 @@ static int read_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, siz
     int failed = g->reader_failed && take == 0;
     if (failed)
         snprintf(err, errlen, "%s", g->reader_err);
-    if (g->ring_n) {
-        char c = 1;
-        if (write(g->wake[1], &c, 1) < 0 && errno != EAGAIN) {
-            /* as in reader_main */
-        }
-    }
+    if (g->ring_n)
+        wake_main(g);
     pthread_mutex_unlock(&g->mu);
     *n = take;
     return failed;
@@ -515,7 +513,6 @@ static int read_edges(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, siz
 
 static int start_reader(cu_gpio *g, char *err, size_t errlen)
 {
-    g->wake[0] = g->wake[1] = g->stop[0] = g->stop[1] = -1;
     if (pipe(g->wake) || pipe(g->stop)) {
         snprintf(err, errlen, "gpio: cannot make a pipe: %s", strerror(errno));
         return 1;
