@@ -46,15 +46,17 @@ ui "dial -1" "sleep 50" "dial -1";     expect evdev_knob_dial_minus_2 0 -2
 ui "key RIGHT" "key RIGHT" "key LEFT"; expect evdev_keys_left_right_azimuth 0 1
 ui "key UP" "key UP" "key DOWN";       expect evdev_keys_up_down_elevation 0.5 0
 ui "key PLUS" "key PLUS";              expect evdev_keys_plus_turns_knob_axis 0 2
-# Enter toggles the knob axis: the dial then moves the elevation by half a step per detent.
+# Enter toggles the knob axis: the dial then moves the elevation by half a step per detent. Waits as long as the
+# sun checks ($WAIT): input is read between frames, and with the default settings a frame takes seconds under
+# emulation (10 s was too short once, 2026-11-22: the toggle came, later).
 ui "key ENTER"
-if wait_for $OUT/ev.err '^knob axis=elevation source=evdev' 10; then t_ok evdev_enter_toggles_axis
+if wait_for $OUT/ev.err '^knob axis=elevation source=evdev' $WAIT; then t_ok evdev_enter_toggles_axis
 else t_fail evdev_enter_toggles_axis "no 'knob axis=elevation source=evdev' line"; fi
 ui "dial 4";                           expect evdev_knob_after_toggle_moves_elevation 2 0
 
 # Unplug the knob mid-run: one line naming it, the run goes on, the keyboard still turns the sun.
 ui "unplug knob"
-if wait_for $OUT/ev.err "^evdev: $knob_path \('$KNOB'\) was unplugged" 10 && kill -0 $pid 2>/dev/null; then
+if wait_for $OUT/ev.err "^evdev: $knob_path \('$KNOB'\) was unplugged" $WAIT && kill -0 $pid 2>/dev/null; then
   t_ok evdev_knob_unplug_survived
 else t_fail evdev_knob_unplug_survived "$(tail -3 $OUT/ev.err)"; fi
 ui "key RIGHT";                        expect evdev_keyboard_works_after_unplug 0 1
