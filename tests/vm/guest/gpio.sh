@@ -84,7 +84,7 @@ pull 0 down; pull 1 down; pull 1 up; pull 0 up; expect gpio_half_turn_back_no_de
 echo "gpio: turn sequences took $(awk -v a="$t" -v b="$(elapsed)" 'BEGIN { printf "%.1f", b - a }') s"
 # The button toggles the knob to elevation: two detents clockwise raise the sun by 2 x 0.5 degree.
 pull 2 down; sleep 0.1; pull 2 up
-if wait_for $OUT/gpio.err '^knob axis=elevation source=gpio' 10; then t_ok gpio_button_toggles_axis
+if wait_for $OUT/gpio.err '^knob axis=elevation source=gpio' $WAIT; then t_ok gpio_button_toggles_axis
 else t_fail gpio_button_toggles_axis "no 'knob axis=elevation source=gpio' line"; fi
 cw 2; expect gpio_button_then_cw_moves_elevation 1 0
 
