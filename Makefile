@@ -1,60 +1,102 @@
-# cumulo build: `make` builds everything, `make demo` renders the default scene, `make check` runs every test.
-# Each part of the tree adds its own targets through an included fragment (*.mk) so that modules stay independent.
+# cumulo build: `make` builds the library, the programs and the tools; `make demo` renders the default scene;
+# `make check` runs every test; `make install` / `make uninstall` (PREFIX, LIBDIR, DESTDIR).
+#
+# Configuration is a dependency (git's GIT-CFLAGS, kmscube's meson features): every invocation first makes sure the
+# packages are there (mk/deps.mk), then runs ./configure, which rewrites $(B)/config.mk, $(B)/gen/config.h and
+# $(B)/gen/lib/paths.h only when their content changes. make re-reads a changed config.mk before building anything,
+# and the objects that read a changed header, or whose flags changed, are rebuilt. Each part of the tree adds its
+# targets through its own fragment (*.mk).
 
+, := ,
 CC      ?= cc
-B       := build
+AR      ?= ar
+B       ?= build
 WERROR  ?= -Werror
 OPT     ?= -O2
-CFLAGS_COMMON := -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic $(WERROR) $(OPT) -g \
-                 -Isrc -I$(B)/gen -MMD -MP
-LDLIBS_COMMON := -lm -lpthread
+PKG_CONFIG ?= pkg-config
+export PKG_CONFIG
 
-# pkg-config is used for every library; a missing one is reported by `make deps-check`.
-PKG := pkg-config
-pc_cflags = $(shell $(PKG) --cflags $(1) 2>/dev/null)
-pc_libs   = $(shell $(PKG) --libs $(1) 2>/dev/null)
+# What ./configure is asked for; `yes` makes a missing back end a configure-time error, `no` leaves it out.
+PREFIX     ?= /usr/local
+LIBDIR     ?= $(PREFIX)/lib
+DATADIR    ?= $(PREFIX)/share
+MANDIR     ?= $(DATADIR)/man
+SYSCONFDIR ?= $(if $(filter /usr,$(PREFIX)),/etc,$(PREFIX)/etc)
+WITH_DRM     ?= auto
+WITH_X11     ?= auto
+WITH_WAYLAND ?= auto
+WITH_GPIO    ?= auto
+WITH_OSMESA  ?= auto
 
-# The environment every test and render runs in: software GL, reproducible thread count.
+VERSION := $(shell cat VERSION)
+SOVERSION := 0
+
+CFLAGS_BASE := -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wpedantic $(WERROR) $(OPT) -g -MMD -MP $(CFLAGS)
+
+# The environment every test and render runs in: software GL, reproducible thread count, the source tree's tables.
 TEST_ENV := LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=2 MESA_DEBUG=silent \
-            EGL_LOG_LEVEL=fatal
-
-PREFIX ?= /usr/local
+            EGL_LOG_LEVEL=fatal CUMULO_DATA_DIR=$(CURDIR)/data B=$(B)
 
 # Filled by the fragments below.
 ALL_BINS    :=
 CHECK_TESTS :=
 
-.PHONY: all check demo deps deps-check bench sweep stress clean install
+.PHONY: all check demo clean install uninstall bench sweep stress FORCE
 all:
 
+# Goals that need no configuration (and so install nothing and probe nothing).
+NO_CONFIG_GOALS := clean deps deps-test deps-vm deps-plots deps-all uninstall help
+CONFIGURED := $(if $(MAKECMDGOALS),$(filter-out $(NO_CONFIG_GOALS),$(MAKECMDGOALS)),all)
+
 include mk/deps.mk
+
+ifneq ($(CONFIGURED),)
+CONFIGURE_ARGS := --builddir=$(B) --prefix=$(PREFIX) --libdir=$(LIBDIR) --datadir=$(DATADIR) --mandir=$(MANDIR) \
+                  --sysconfdir=$(SYSCONFDIR) --with-drm=$(WITH_DRM) --with-x11=$(WITH_X11) \
+                  --with-wayland=$(WITH_WAYLAND) --with-gpio=$(WITH_GPIO) --with-osmesa=$(WITH_OSMESA)
+# Always run: the packages first (a no-op when they are there), then configure (replaces files only on change).
+$(B)/config.mk: FORCE
+	@$(DEPS_ENSURE_BUILD)
+	@$(if $(filter check stress vmcheck test-%,$(MAKECMDGOALS)),$(DEPS_ENSURE_TEST))
+	@sh ./configure --quiet $(CONFIGURE_ARGS)
+include $(B)/config.mk
+endif
+
+# Flags files: one per component, rewritten only when the flags change, so objects depend on their flags.
+# $(call flags_file,NAME,FLAGS)
+define flags_rule
+$(B)/flags/$(1): FORCE
+	@mkdir -p $$(@D); printf '%s\n' '$$(subst ','"'"',$(2))' >$$@.tmp; \
+	  if cmp -s $$@.tmp $$@; then rm -f $$@.tmp; else mv -f $$@.tmp $$@; fi
+endef
+
+include src/lib.mk
 include platform/platform.mk
-include src/engine.mk
+include app/app.mk
 include tools/mie/mie.mk
 include tools/slab/slab.mk
 include tools/pathtrace/pathtrace.mk
 include tests/tests.mk
 include tests/vm/vm.mk
-include mk/sweep.mk
+include tools/sweep/sweep.mk
+include mk/install.mk
 
 all: $(ALL_BINS)
 
-# The README's test command: builds everything, runs every test binary, prints "N passed, N failed".
-check: deps-check all $(CHECK_TESTS)
+# The README's test command: builds everything, runs every test, prints "N passed, N failed, N skipped".
+check: all $(CHECK_TESTS)
 	@$(TEST_ENV) sh tests/run_tests.sh $(CHECK_TESTS)
 
-demo: deps-check $(B)/cumulo
+demo: $(B)/cumulo
 	@$(TEST_ENV) $(B)/cumulo render scenes/cumulus.scene -o $(B)/demo.png
 	@echo "demo: wrote $(B)/demo.png"
 
 clean:
 	rm -rf $(B)
 
-install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/cumulo/scenes $(DESTDIR)$(PREFIX)/share/cumulo/data
-	install -m 755 $(ALL_BINS) $(DESTDIR)$(PREFIX)/bin/
-	install -m 644 scenes/*.scene $(DESTDIR)$(PREFIX)/share/cumulo/scenes/
-	-install -m 644 data/* $(DESTDIR)$(PREFIX)/share/cumulo/data/
+FORCE:
 
 # dependency files of our own objects (build/vm holds a kernel tree with its own *.d, which are not ours)
+ifneq ($(CONFIGURED),)
 -include $(shell find $(B) -path $(B)/vm -prune -o -type f -name '*.d' -print 2>/dev/null)
+endif

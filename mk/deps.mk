@@ -1,29 +1,41 @@
-# Debian packages the project needs, and the check that installs them when one is missing.
-# Building and running the engine, its tools and the platform layer (`make demo`, `make check` need these):
-# compiler/make/pkg-config; EGL/GLES + Mesa's llvmpipe for a headless GLES 3 context; OSMesa, the second headless
-# back end; libpng; cmocka; GSL (tools/slab's fitter); gbm/drm/libgpiod (kiosk); X11 and Wayland client libraries
-# and wayland-protocols (xdg-shell) so the windowed back ends are built.
-DEB_CORE     := gcc make pkg-config libc6-dev \
-                libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev \
-                libpng-dev libcmocka-dev libgsl-dev libgbm-dev libdrm-dev libgpiod-dev \
-                libx11-dev libwayland-dev wayland-protocols
-# Tests only: a real X server (Xvfb) and Wayland compositor (weston) for the windowed back ends' tests, which are
-# skipped without them.
-DEB_TEST     := xvfb weston
-# `make vmcheck` (tests/vm) runs the platform layer against real kernel drivers (vkms, gpio-sim, uinput) in a VM:
-# qemu-system-x86 boots it, linux-source-6.1 is the kernel it builds, with flex/bison/bc (kconfig and the build),
-# libelf-dev (objtool) and xz-utils (unpacking the source).
-DEB_VM       := qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
-# Plots of `make sweep`, tools/mie/plot_phase.sh and tools/slab/plots.sh (the committed PNGs do not need it).
-DEB_PLOTS    := gnuplot-nox
-DEB_PACKAGES := $(DEB_CORE) $(DEB_TEST) $(DEB_VM) $(DEB_PLOTS)
-PC_REQUIRED  := egl glesv2 osmesa libpng cmocka gsl
+# mk/deps.mk: the Debian packages cumulo needs, by purpose, and the checks that install them when one is missing.
+#
+# Building and running (`make deps`; what a Raspberry Pi kiosk needs): the compiler, make and pkg-config; EGL and
+# GLES headers with Mesa's EGL and llvmpipe (headless rendering, and the fallback on machines without a GPU driver);
+# libpng (the library writes and reads PNG); OSMesa (the second headless back end); GBM and libdrm (full screen on
+# DRM/KMS); libgpiod (the GPIO knob); X11 and Wayland client libraries with wayland-protocols and wayland-scanner
+# (windows). Each optional back end is built when its package is there (./configure says which).
+DEB_BUILD := gcc make pkg-config libc6-dev libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libpng-dev \
+             libosmesa6-dev libgbm-dev libdrm-dev libgpiod-dev libx11-dev libwayland-dev libwayland-bin \
+             wayland-protocols
+# Tests (`make deps-test`): cmocka for the unit tests, GSL for tools/slab's model fitter and its tests, a real X
+# server (Xvfb) and Wayland compositor (weston) for the windowed back ends' tests (skipped without them).
+DEB_TEST  := libcmocka-dev libgsl-dev xvfb weston
+# `make vmcheck` (`make deps-vm`): qemu boots a kernel built from linux-source-6.1 (flex, bison, bc for kconfig,
+# libelf-dev for objtool, xz-utils to unpack) to test DRM, GPIO and evdev against real drivers.
+DEB_VM    := qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
+# Plots of `make sweep` and the tools' plot scripts (`make deps-plots`; the committed PNGs do not need it).
+DEB_PLOTS := gnuplot-nox
 
-# Everything, for CI and developers.
+# The pkg-config modules and files that say the build packages are there, so a configured machine asks dpkg nothing.
+PC_BUILD := egl glesv2 libpng osmesa gbm libdrm libgpiod x11 wayland-client wayland-egl wayland-protocols
+PC_TEST  := cmocka gsl
+
+.PHONY: deps deps-test deps-vm deps-plots deps-all
 deps:
-	@sh scripts/install-deps.sh $(DEB_PACKAGES)
+	@sh scripts/install-deps.sh $(DEB_BUILD)
+deps-test:
+	@sh scripts/install-deps.sh $(DEB_TEST)
+deps-vm:
+	@sh scripts/install-deps.sh $(DEB_VM)
+deps-plots:
+	@sh scripts/install-deps.sh $(DEB_PLOTS)
+deps-all: deps deps-test deps-vm deps-plots
 
-# Installs only when something is missing, so `make demo` works on a fresh machine and costs nothing after.
-deps-check:
-	@$(PKG) --exists $(PC_REQUIRED) 2>/dev/null && [ -e /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so -o -n "$$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null)" ] \
-	  || sh scripts/install-deps.sh $(DEB_CORE)
+# Run before ./configure: installs the build (or test) packages only when pkg-config misses one of their modules.
+# NO_DEPS=1 skips it (a machine without apt, or a packager's build root); configure then says what is missing.
+DEPS_ENSURE_BUILD = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_BUILD) 2>/dev/null && \
+                    [ -n "$$(ls /usr/lib/*/dri/swrast_dri.so /usr/lib/dri/swrast_dri.so 2>/dev/null)" ] \
+                    || sh scripts/install-deps.sh $(DEB_BUILD))
+DEPS_ENSURE_TEST  = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_TEST) 2>/dev/null && command -v Xvfb >/dev/null \
+                    || sh scripts/install-deps.sh $(DEB_TEST))

@@ -1,6 +1,46 @@
-# platform/: display back ends (headless EGL surfaceless, OSMesa; DRM/KMS and windows from devices.mk) and inputs.
-PLATFORM_SRCS := platform/display.c platform/egl_common.c platform/egl_surfaceless.c platform/osmesa.c \
-                 platform/headless_fbo.c
-PLATFORM_CFLAGS := $(call pc_cflags,egl osmesa)
-PLATFORM_LIBS := $(call pc_libs,egl osmesa)
--include platform/devices.mk
+# platform/platform.mk: the display back ends (platform/display/) and the inputs (platform/input/) the programs use.
+# Which optional back ends are built comes from ./configure ($(B)/config.mk, $(B)/gen/config.h).
+DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
+                platform/display/headless_fbo.c platform/display/drm_mode.c \
+                $(if $(filter 1,$(HAVE_OSMESA)),platform/display/osmesa.c) \
+                $(if $(filter 1,$(HAVE_DRM)),platform/display/drm.c) \
+                $(if $(filter 1,$(HAVE_X11)),platform/display/x11.c) \
+                $(if $(filter 1,$(HAVE_WAYLAND)),platform/display/wayland.c)
+INPUT_SRCS   := platform/input/input.c platform/input/evdev.c platform/input/stdin_input.c \
+                platform/input/quadrature.c platform/input/sun_control.c \
+                $(if $(filter 1,$(HAVE_GPIO)),platform/input/gpio.c)
+PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS)
+PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
+PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread
+
+PLATFORM_CPPFLAGS := -Iplatform/display -Iplatform/input -I$(B)/gen
+GPIO_API_FLAG := $(if $(filter 2,$(GPIO_API)),-DCU_GPIOD_V2)
+CFLAGS_PLATFORM := $(CFLAGS_BASE) $(PLATFORM_CPPFLAGS)
+$(eval $(call flags_rule,platform,$(CC) $(CFLAGS_PLATFORM) $(EGL_CFLAGS) $(OSMESA_CFLAGS) $(DRM_CFLAGS) \
+  $(X11_CFLAGS) $(WAYLAND_CFLAGS) $(GPIO_CFLAGS) $(GPIO_API_FLAG)))
+
+# Each back end's file gets its own libraries' flags, and only it.
+$(B)/obj/platform/display/egl_common.o $(B)/obj/platform/display/egl_surfaceless.o: XCFLAGS := $(EGL_CFLAGS)
+$(B)/obj/platform/display/osmesa.o: XCFLAGS := $(OSMESA_CFLAGS)
+$(B)/obj/platform/display/drm.o: XCFLAGS := $(DRM_CFLAGS) $(EGL_CFLAGS)
+$(B)/obj/platform/display/x11.o: XCFLAGS := $(X11_CFLAGS) $(EGL_CFLAGS)
+$(B)/obj/platform/display/wayland.o: XCFLAGS := $(WAYLAND_CFLAGS) $(EGL_CFLAGS)
+$(B)/obj/platform/input/gpio.o: XCFLAGS := $(GPIO_CFLAGS) $(GPIO_API_FLAG)
+
+# xdg-shell's client glue, generated from wayland-protocols' XML by wayland-scanner.
+WL_GEN := $(B)/gen/xdg-shell-client-protocol.h $(B)/gen/xdg-shell-protocol.inc
+$(B)/gen/xdg-shell-client-protocol.h: $(B)/config.mk
+	@mkdir -p $(@D)
+	$(WAYLAND_SCANNER) client-header $(WAYLAND_XDG_XML) $@
+$(B)/gen/xdg-shell-protocol.inc: $(B)/config.mk
+	@mkdir -p $(@D)
+	$(WAYLAND_SCANNER) private-code $(WAYLAND_XDG_XML) $@
+$(B)/obj/platform/display/wayland.o: $(WL_GEN)
+
+$(B)/obj/platform/%.o: platform/%.c $(B)/flags/platform
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_PLATFORM) $(XCFLAGS) -c $< -o $@
+
+.PHONY: platform-info
+platform-info:
+	@sh ./configure $(CONFIGURE_ARGS)

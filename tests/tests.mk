@@ -1,59 +1,80 @@
-# tests/: unit tests (cmocka), image tests, physics and stability checks of the engine.
-TEST_CFLAGS := $(CFLAGS_COMMON) $(call pc_cflags,cmocka) $(ENGINE_CFLAGS)
-TEST_LIBS   := $(call pc_libs,cmocka) -lm
+# tests/tests.mk: every test of `make check`, one layout: tests/<part>/test_*.c (cmocka) and tests/<part>/test_*.sh
+# (tests/lib.sh), all run by tests/run_tests.sh. Every test program is declared through one template.
+TEST_CPPFLAGS := -Iinclude -Isrc/core -Isrc/gpu -I$(B)/gen/lib $(PLATFORM_CPPFLAGS) -Itests/gpu -Itools/pathtrace \
+                 -Itools/mie -Itools/slab
+CFLAGS_TEST := $(CFLAGS_BASE) $(TEST_CPPFLAGS) $(CMOCKA_CFLAGS) $(LIB_CFLAGS) $(EGL_CFLAGS) $(OSMESA_CFLAGS)
+$(eval $(call flags_rule,test,$(CC) $(CFLAGS_TEST)))
 
-$(B)/test_scene: tests/test_scene.c $(B)/libcumulo.a
-	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_scene
+# $(call test_program,NAME,SOURCES (.c, then .o and .a in link order),EXTRA_CFLAGS,EXTRA_LIBS)
+define test_program
+$(B)/$(1): $(2) $(B)/flags/test | $(B)/gen/version.h
+	@mkdir -p $$(@D)
+	$$(CC) $$(CFLAGS_TEST) $(3) -o $$@ $$(filter %.c %.o %.a,$$^) $(4) $$(CMOCKA_LIBS) -lm -lpthread
+CHECK_TESTS += $(B)/$(1)
+endef
 
-$(B)/test_phase: tests/test_phase.c $(B)/libcumulo.a
-	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_phase
+LIB   := $(B)/libcumulo.a
+CORE  := $(B)/libcumulo-core.a
+# What the image tests link to open a headless context (EGL surfaceless and OSMesa).
+HEADLESS := tests/gpu/render_util.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
+            platform/display/osmesa.c platform/display/headless_fbo.c
+HEADLESS_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(LIB_LIBS)
 
+# core: the scene, phase tables, geometry and a C twin of the shader's per-sample maths.
+$(eval $(call test_program,test_scene,tests/core/test_scene.c $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_phase,tests/core/test_phase.c $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_math,tests/core/test_math.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
-$(B)/test_precision: tests/test_precision.c
-	$(CC) $(TEST_CFLAGS) -Wno-pedantic -o $@ $< $(TEST_LIBS)
-CHECK_TESTS += $(B)/test_precision
+$(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
-$(B)/test_math: tests/test_math.c $(B)/libcumulo.a
-	$(CC) $(TEST_CFLAGS) -o $@ $< $(B)/libcumulo.a $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_math
+# gpu: renders through both headless back ends against references, closed forms and the CPU.
+$(foreach t,render extremes sunmap ms fallback,\
+  $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
+CHECK_TESTS += tests/gpu/test_ms_slab.sh
 
-HEADLESS_SRCS := platform/egl_common.c platform/egl_surfaceless.c platform/osmesa.c platform/headless_fbo.c
-$(B)/test_render: tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_render.c tests/render_util.c $(HEADLESS_SRCS) \
-	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_render
+# app: the cumulo program's command line.
+CHECK_TESTS += tests/app/test_cli.sh
 
-$(B)/test_extremes: tests/test_extremes.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_extremes.c tests/render_util.c $(HEADLESS_SRCS) \
-	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_extremes
+# platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
+$(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
+$(eval $(call test_program,test_input,tests/platform/test_input.c platform/input/input.c \
+  platform/input/stdin_input.c platform/input/sun_control.c,,))
+$(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c,,))
+$(eval $(call test_program,test_drm_mode,tests/platform/test_drm_mode.c platform/display/drm_mode.c,,))
+$(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c platform/input/evdev.c \
+  platform/input/input.c,,-Wl$(,)--wrap=open$(,)--wrap=ioctl$(,)--wrap=read$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
+ifeq ($(HAVE_DRM),1)
+# drm.c against a fake Pi-like display stack (libdrm, GBM and EGL helpers defined in the test, /dev/dri faked).
+$(eval $(call test_program,test_drm,tests/platform/test_drm.c platform/display/drm.c platform/display/drm_mode.c,\
+  $(DRM_CFLAGS),-Wl$(,)--wrap=open$(,)--wrap=stat$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
+endif
+# gpio.c against a scripted fake of libgpiod: the v2 build declares the v2 API itself, so it runs everywhere; the v1
+# build needs the v1 header (libgpiod 1.x installed).
+$(eval $(call test_program,test_gpio_v2,tests/platform/test_gpio.c platform/input/quadrature.c \
+  platform/input/input.c,-DCU_GPIOD_V2,))
+ifeq ($(GPIO_API),1)
+$(eval $(call test_program,test_gpio_v1,tests/platform/test_gpio.c platform/input/quadrature.c \
+  platform/input/input.c,$(GPIO_CFLAGS),))
+endif
+CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_gpio_sim.sh tests/platform/test_soak.sh
 
-$(B)/test_sunmap: tests/test_sunmap.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_sunmap.c tests/render_util.c $(HEADLESS_SRCS) \
-	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_sunmap
+# tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
+$(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))
+CHECK_TESTS += tests/mie/test_mie_cli.sh
+$(eval $(call test_program,test_slab,tests/slab/test_slab.c $(B)/obj/tools/slab/slab.o \
+  $(B)/obj/tools/slab/fitlib.o,$(GSL_CFLAGS),$(GSL_LIBS)))
+CHECK_TESTS += tests/slab/test_slab_cli.sh
+$(eval $(call test_program,test_pathtrace,tests/pathtrace/test_pt.c $(B)/obj/tools/pathtrace/pt.o $(CORE),,$(LIB_LIBS)))
+CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 
-# The long versions of the stability tests (larger images, finer sweeps).
-stress: all $(B)/test_extremes
-	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes
-.PHONY: stress
+# build: configuration, install and an embedding program built against the installed copy (tests/build/).
+CHECK_TESTS += $(wildcard tests/build/test_*.sh)
+
+# The long versions (larger images, finer sweeps, thick slabs): `make stress`.
+stress: all $(B)/test_extremes $(B)/test_slab
+	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes tests/slab/test_slab_stress.sh
 
 # Rewrites the reference images from the current renderer (EGL); look at them before committing.
 refs: $(B)/test_render
 	$(TEST_ENV) CUMULO_WRITE_REFS=1 CMOCKA_TEST_ABORT=0 $(B)/test_render
-.PHONY: refs
-
-CHECK_TESTS += tests/test_cli.sh
-
-$(B)/test_ms: tests/test_ms.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_ms.c tests/render_util.c $(HEADLESS_SRCS) \
-	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_ms
-CHECK_TESTS += tests/test_ms_slab.sh
-
-$(B)/test_fallback: tests/test_fallback.c tests/render_util.c $(HEADLESS_SRCS) $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) $(TEST_CFLAGS) $(call pc_cflags,egl osmesa) -o $@ tests/test_fallback.c tests/render_util.c $(HEADLESS_SRCS) \
-	    $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,egl osmesa libpng) $(TEST_LIBS) -ldl
-CHECK_TESTS += $(B)/test_fallback
+.PHONY: refs stress

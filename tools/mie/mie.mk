@@ -1,29 +1,17 @@
-# tools/mie: the Lorenz-Mie solver (build/cumulo-mie), its unit tests (build/test_mie) and CLI/table tests.
+# tools/mie: the Lorenz-Mie solver (build/cumulo-mie) that makes data/mie_cloud.tbl. Its tests are in tests/mie/.
+MIE_LIB_SRCS := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c tools/mie/resonance.c
+MIE_LIB_OBJS := $(MIE_LIB_SRCS:%.c=$(B)/obj/%.o)
+CFLAGS_TOOLS := $(CFLAGS_BASE) -Iinclude -Isrc/core -I$(B)/gen
+$(eval $(call flags_rule,tools,$(CC) $(CFLAGS_TOOLS)))
 
-MIE_LIB_SRC := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c tools/mie/resonance.c
-MIE_LIB_OBJ := $(MIE_LIB_SRC:%.c=$(B)/obj/%.o)
-MIE_OBJ_DIR := $(B)/obj/tools/mie
-
-$(MIE_OBJ_DIR)/%.o: tools/mie/%.c
+$(B)/obj/tools/mie/%.o: tools/mie/%.c $(B)/flags/tools | $(B)/gen/version.h
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) -c $< -o $@
+	$(CC) $(CFLAGS_TOOLS) -c $< -o $@
 
-$(MIE_OBJ_DIR)/test_mie.o: tools/mie/test_mie.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_COMMON) $(call pc_cflags,cmocka) -c $< -o $@
+$(B)/cumulo-mie: $(B)/obj/tools/mie/main.o $(MIE_LIB_OBJS)
+	$(CC) $^ -o $@ -lm
 
-$(B)/cumulo-mie: $(MIE_OBJ_DIR)/main.o $(MIE_LIB_OBJ)
-	@mkdir -p $(dir $@)
-	$(CC) $^ -o $@ $(LDLIBS_COMMON)
-
-# The unit tests read data/mie_cloud.tbl, so they also run against the committed table.
-$(B)/test_mie: $(MIE_OBJ_DIR)/test_mie.o $(MIE_LIB_OBJ)
-	@mkdir -p $(dir $@)
-	$(CC) $^ -o $@ $(call pc_libs,cmocka) $(LDLIBS_COMMON)
-
-ALL_BINS    += $(B)/cumulo-mie
-# The shell test (bad arguments, output formats, regenerating data/mie_cloud.tbl) runs from the repository root.
-CHECK_TESTS += $(B)/test_mie tools/mie/test_mie_cli.sh
+ALL_BINS += $(B)/cumulo-mie
 
 .PHONY: mie-table mie-plot mie-stress
 # Regenerates the committed table (data/mie_cloud.md records the command and its checksum).
@@ -32,7 +20,7 @@ mie-table: $(B)/cumulo-mie
 mie-plot:
 	sh tools/mie/plot_phase.sh data/mie_cloud.tbl docs/mie_phase.png
 # Full-table convergence (every angle, half dx and half the wavelength step must change nothing by 1e-4; ~3 CPU
-# minutes). Hooked into `make stress`, which tests/tests.mk defines.
+# minutes), part of `make stress`.
 mie-stress: $(B)/cumulo-mie
-	sh tests/run_tests.sh tools/mie/mie_stress.sh
+	$(TEST_ENV) sh tests/run_tests.sh tests/mie/mie_stress.sh
 stress: mie-stress

@@ -1,18 +1,10 @@
-# tools/pathtrace: the reference volumetric path tracer (build/cumulo-pt) and its validation tests.
-PT_DIR := tools/pathtrace
-PT_OBJ := $(B)/obj/tools/pathtrace
-PT_CFLAGS := $(CFLAGS_COMMON) -DCU_INSTALL_DATA_DIR='"$(PREFIX)/share/cumulo/data"'
-PT_LIBS := $(B)/libcumulo.a $(B)/libcumulo_util.a $(call pc_libs,libpng) -ldl $(LDLIBS_COMMON)
-
-$(PT_OBJ)/%.o: $(PT_DIR)/%.c
+# tools/pathtrace: the reference volumetric path tracer (build/cumulo-pt). It links the core of the library only
+# (scene, density, noise, phase, sky: no GL). Tests are in tests/pathtrace/.
+$(B)/obj/tools/pathtrace/%.o: tools/pathtrace/%.c $(B)/flags/tools | $(B)/gen/version.h
 	@mkdir -p $(dir $@)
-	$(CC) $(PT_CFLAGS) $(call pc_cflags,cmocka) -c $< -o $@
+	$(CC) $(CFLAGS_TOOLS) $(LIB_CFLAGS) -c $< -o $@
 
-$(B)/cumulo-pt: $(PT_OBJ)/main.o $(PT_OBJ)/pt.o $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) -o $@ $(PT_OBJ)/main.o $(PT_OBJ)/pt.o $(PT_LIBS)
-
-$(B)/test_pathtrace: $(PT_OBJ)/test_pt.o $(PT_OBJ)/pt.o $(B)/libcumulo.a $(B)/libcumulo_util.a
-	$(CC) -o $@ $(PT_OBJ)/test_pt.o $(PT_OBJ)/pt.o $(call pc_libs,cmocka) $(PT_LIBS)
+$(B)/cumulo-pt: $(B)/obj/tools/pathtrace/main.o $(B)/obj/tools/pathtrace/pt.o $(B)/libcumulo-core.a
+	$(CC) -o $@ $^ $(LIB_LIBS) -lpthread
 
 ALL_BINS += $(B)/cumulo-pt
-CHECK_TESTS += $(B)/test_pathtrace $(PT_DIR)/test_pt_cli.sh

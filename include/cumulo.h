@@ -1,0 +1,87 @@
+/* cumulo.h: the public C API of libcumulo, a real-time cumulus renderer for OpenGL ES 3.0 (Kol 2013, Bouthors 2008).
+ *
+ * Usage (sokol-style: zero means default, the library never creates a context or prints):
+ *     cu_desc desc = {0};                       // GL functions through dlsym, no logging
+ *     cu_renderer *r; cu_scene *s; cu_error e;
+ *     if (cu_scene_load(&s, "scenes/cumulus.scene", &e)) { fprintf(stderr, "%s\n", e.msg); ... }
+ *     cu_renderer_create(&r, &desc, &e);        // needs a current GLES 3 context
+ *     cu_renderer_set_scene(r, s, &e);
+ *     cu_frame f = { .fbo = 0, .width = 640, .height = 480 };
+ *     cu_render(r, &f, &e);                     // draws into the bound framebuffer
+ *     cu_renderer_destroy(r); cu_scene_free(s);
+ * Every function that can fail returns 0 on success and non-zero on failure with a one-line message in *err.
+ */
+#ifndef CUMULO_H
+#define CUMULO_H
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct cu_renderer cu_renderer;
+typedef struct cu_scene cu_scene;
+
+typedef struct cu_error {
+    char msg[512];
+} cu_error;
+
+typedef enum cu_log_level { CU_LOG_ERROR, CU_LOG_WARN, CU_LOG_INFO, CU_LOG_DEBUG } cu_log_level;
+typedef void (*cu_log_fn)(void *user, cu_log_level level, const char *msg);
+typedef void *(*cu_get_proc_fn)(void *user, const char *name);
+
+typedef struct cu_desc {
+    cu_get_proc_fn get_proc_address; /* GL entry points; NULL = look them up in the process (dlsym) */
+    void *get_proc_user;
+    cu_log_fn log;                   /* NULL = no logging */
+    void *log_user;
+    const char *data_dir;            /* the folder holding the tables (mie_cloud.tbl, slab_fit_bouthors.txt, ...);
+                                        NULL = cu_default_data_dir() */
+} cu_desc;
+
+/* The library's version ("0.5.0"). */
+const char *cu_version(void);
+/* $CUMULO_DATA_DIR when it is set and not empty, else the folder `make install` put the tables in
+ * (PREFIX/share/cumulo/data, fixed when the library was configured). */
+const char *cu_default_data_dir(void);
+
+/* ---- scenes (INI-style files, see scenes/cumulus.scene and README "Scene files") ---- */
+int  cu_scene_load(cu_scene **out, const char *path, cu_error *err);
+int  cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t len, cu_error *err);
+/* "section.key=value", as given to --set; errors name "--set" and the field. */
+int  cu_scene_set(cu_scene *s, const char *assignment, cu_error *err);
+void cu_scene_output_size(const cu_scene *s, int *width, int *height);
+void cu_scene_free(cu_scene *s);
+
+/* ---- renderer ---- */
+int  cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err);
+void cu_renderer_destroy(cu_renderer *r);
+/* Copies the scene, builds the shader variants it needs and its GPU resources. */
+int  cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err);
+/* Moves the sun (degrees); only the sun-dependent passes are redone on the next frame. */
+int  cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err);
+void cu_renderer_get_sun(const cu_renderer *r, double *elevation_deg, double *azimuth_deg);
+/* The energy closure's gain on the multiple scattering the slab model reflects (transmitted = 0) or transmits (1)
+ * for the current sun: 1 when the cloud sends out no more than it intercepts, or when the mode is not the slab
+ * model (src/energy.c). Updated by cu_render when the sun or the clouds change. */
+double cu_renderer_ms_gain(const cu_renderer *r, int transmitted);
+
+typedef struct cu_frame {
+    unsigned fbo;        /* framebuffer to draw into (0 = the default one) */
+    int width, height;   /* viewport size in pixels */
+    int linear;          /* 1: write linear radiance (needs a float colour target), 0: tone-mapped sRGB */
+} cu_frame;
+int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
+
+/* Image files for screenshots: RGBA8 pixels, top row first, as 8-bit PNG; RGB float pixels (linear radiance, top
+ * row first) as PFM. Every write is checked, including the final flush and close (a full disk is an error). */
+int  cu_write_png(const char *path, const unsigned char *rgba, int width, int height, cu_error *err);
+int  cu_write_pfm(const char *path, const float *rgb, int width, int height, cu_error *err);
+
+/* GL_VENDOR / GL_RENDERER / GL_VERSION of the context the renderer runs in, and the paths it chose. */
+const char *cu_renderer_gl_string(const cu_renderer *r, int which /* 0 vendor, 1 renderer, 2 version */);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

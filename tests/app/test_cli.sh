@@ -1,0 +1,52 @@
+# tests/test_cli.sh: the cumulo program end to end: renders to PNG and PFM, bench output format, and clear errors with
+# the right exit status for bad scenes, bad options and bad values. Run from the repository root.
+. tests/lib.sh
+C=${CUMULO:-build/cumulo}
+T=build/test-output/cli
+mkdir -p "$T"
+
+if $C render scenes/cumulus.scene -o "$T/a.png" --size 64x48 >/dev/null 2>"$T/err" && [ -s "$T/a.png" ] &&
+   [ "$(head -c 8 "$T/a.png" | od -An -c | tr -d ' \n')" = "211PNG\r\n032\n" ]; then
+  t_ok "render PNG"
+else t_fail "render PNG" "$(cat "$T/err")"; fi
+
+if $C render scenes/cumulus.scene -o "$T/a.pfm" --size 64x48 --backend osmesa >/dev/null 2>"$T/err" &&
+   [ "$(head -c 2 "$T/a.pfm")" = "PF" ] && [ "$(wc -c < "$T/a.pfm")" -ge $((64 * 48 * 12)) ]; then
+  t_ok "render PFM through OSMesa"
+else t_fail "render PFM through OSMesa" "$(cat "$T/err")"; fi
+
+out=$($C bench scenes/cumulus.scene --frames 3 --warmup 1 --size 64x48 --set quality.segments=2 2>&1)
+case "$out" in
+  *"GL_RENDERER:"*"[cumulus.scene] size=64x48:quality.segments=2: FPS: "*" FrameTime: "*" ms p95: "*) t_ok "bench output" ;;
+  *) t_fail "bench output" "$out" ;;
+esac
+
+printf '[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 nan 1\n' > "$T/bad.scene"
+t_expect "bad scene value" 1 "$T/bad.scene:8:9: 'radii' is NaN" -- $C render "$T/bad.scene" -o "$T/x.png"
+head -c 300 /dev/urandom > "$T/garbage.scene"; printf '\000' >> "$T/garbage.scene"
+t_expect "binary garbage" 1 "not a text file" -- $C render "$T/garbage.scene" -o "$T/x.png"
+: > "$T/empty.scene"
+t_expect "empty scene" 1 "$T/empty.scene:1:1: empty scene file" -- $C render "$T/empty.scene" -o "$T/x.png"
+t_expect "missing scene" 1 "nope.scene: cannot open" -- $C render nope.scene -o "$T/x.png"
+t_expect "bad --set key" 1 "unknown key 'cloud.colour'" -- $C render scenes/cumulus.scene -o "$T/x.png" --set cloud.colour=1
+t_expect "bad --set value" 1 "'radii' must be positive, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --size" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size 0x10
+t_expect "bad output type" 2 "must end in .png or .pfm" -- $C render scenes/cumulus.scene -o "$T/x.jpg"
+t_expect "unknown back end" 1 "unknown back end 'vulkan'" -- $C render scenes/cumulus.scene -o "$T/x.png" --backend vulkan
+t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
+t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
+t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
+# The presets compiled into the engine (src/core/presets.c) are the ones the sweep chose (docs/sweep_presets.txt): every
+# key=value of each preset's --set line must appear in that preset's entry, except cloud.phase (a preset never changes
+# the scene's phase function; the sweep lists it because it is one of its knobs).
+bad=""
+for p in high medium low; do
+  want=$(grep "^$p:" docs/sweep_presets.txt | sed 's/ *#.*//; s/^[a-z]*: *//; s/--set //g')
+  have=$(awk -v p="$p" '/^    \/\* / { cur = $2; sub(/:$/, "", cur) } cur == p && /"/ { gsub(/^ *"|" *,? *$/, ""); printf "%s", $0 }' src/core/presets.c | tr ';' ' ')
+  [ -n "$want" ] || bad="$bad $p:missing-in-docs"
+  for kv in $want; do case "$kv" in cloud.phase=*) continue ;; esac; case " $have " in *" $kv "*) ;; *) bad="$bad $p:$kv" ;; esac; done
+done
+if [ -z "$bad" ]; then t_ok "presets in src/core/presets.c match docs/sweep_presets.txt"
+else t_fail "presets in src/core/presets.c match docs/sweep_presets.txt" "differ:$bad"; fi
+
+t_summary

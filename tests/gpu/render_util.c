@@ -1,0 +1,177 @@
+/* tests/render_util.c: headless rendering and image comparison helpers for the tests (see render_util.h). */
+#include "render_util.h"
+#include "image.h"
+#include <GLES3/gl3.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static void *getproc(void *user, const char *name)
+{
+    tr_ctx *c = user;
+    return c->be->get_proc_address(c->disp, name);
+}
+
+int tr_open(tr_ctx *c, const cu_display_backend *be, int w, int h, int linear)
+{
+    memset(c, 0, sizeof *c);
+    c->be = be;
+    c->w = w;
+    c->h = h;
+    c->linear = linear;
+    cu_display_opts o = {0};
+    o.width = w;
+    o.height = h;
+    o.float_target = linear;
+    if (be->open(&c->disp, &o, c->err, sizeof c->err))
+        return 1;
+    cu_desc d = {0};
+    d.get_proc_address = getproc;
+    d.get_proc_user = c;
+    d.data_dir = getenv("CUMULO_DATA_DIR"); /* as the cumulo program: tables from elsewhere than ./data */
+    cu_error e;
+    if (cu_renderer_create(&c->r, &d, &e)) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    return 0;
+}
+
+int tr_render_scene(tr_ctx *c, const cu_scene *s)
+{
+    cu_error e;
+    if (cu_renderer_set_scene(c->r, s, &e)) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    return tr_render_again(c);
+}
+
+int tr_render_again(tr_ctx *c)
+{
+    cu_error e;
+    unsigned fbo;
+    int w, h;
+    c->be->frame(c->disp, &fbo, &w, &h);
+    cu_frame f = {fbo, w, h, c->linear};
+    if (cu_render(c->r, &f, &e)) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    return 0;
+}
+
+int tr_render(tr_ctx *c, const char *scene, const char *const *sets)
+{
+    cu_scene *s;
+    cu_error e;
+    int rc = scene[0] == '[' ? cu_scene_parse(&s, "inline.scene", scene, strlen(scene), &e)
+                             : cu_scene_load(&s, scene, &e);
+    if (rc) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    for (int i = 0; sets && sets[i]; i++)
+        if (cu_scene_set(s, sets[i], &e)) {
+            snprintf(c->err, sizeof c->err, "%s", e.msg);
+            cu_scene_free(s);
+            return 1;
+        }
+    rc = tr_render_scene(c, s);
+    cu_scene_free(s);
+    return rc;
+}
+
+static int read_raw(tr_ctx *c, GLenum type, void *buf)
+{
+    void *rp = c->be->get_proc_address(c->disp, "glReadPixels");
+    void *bf = c->be->get_proc_address(c->disp, "glBindFramebuffer");
+    void (*read)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *);
+    void (*bind)(GLenum, GLuint);
+    memcpy(&read, &rp, sizeof rp);
+    memcpy(&bind, &bf, sizeof bf);
+    unsigned fbo;
+    int w, h;
+    c->be->frame(c->disp, &fbo, &w, &h);
+    bind(GL_FRAMEBUFFER, fbo);
+    read(0, 0, w, h, GL_RGBA, type, buf);
+    return 0;
+}
+
+int tr_read_rgbf(tr_ctx *c, float *rgb)
+{
+    float *t = malloc(sizeof(float) * 4 * (size_t)c->w * c->h);
+    read_raw(c, GL_FLOAT, t);
+    for (int y = 0; y < c->h; y++)
+        for (int x = 0; x < c->w; x++)
+            for (int k = 0; k < 3; k++)
+                rgb[((size_t)y * c->w + x) * 3 + k] = t[((size_t)(c->h - 1 - y) * c->w + x) * 4 + k];
+    free(t);
+    return 0;
+}
+
+int tr_read_rgba8(tr_ctx *c, uint8_t *rgba)
+{
+    uint8_t *t = malloc(4 * (size_t)c->w * c->h);
+    read_raw(c, GL_UNSIGNED_BYTE, t);
+    for (int y = 0; y < c->h; y++)
+        memcpy(rgba + (size_t)y * c->w * 4, t + (size_t)(c->h - 1 - y) * c->w * 4, (size_t)c->w * 4);
+    free(t);
+    return 0;
+}
+
+void tr_close(tr_ctx *c)
+{
+    cu_renderer_destroy(c->r);
+    if (c->disp)
+        c->be->close(c->disp);
+    memset(c, 0, sizeof *c);
+}
+
+tr_diff tr_compare_rgba8(const uint8_t *a, const uint8_t *b, int w, int h, int threshold)
+{
+    tr_diff d = {0, 0, 0};
+    double se = 0;
+    long over = 0;
+    for (long i = 0; i < (long)w * h; i++) {
+        int worst = 0;
+        for (int k = 0; k < 3; k++) {
+            int e = abs((int)a[4 * i + k] - (int)b[4 * i + k]);
+            se += (double)e * e;
+            if (e > worst)
+                worst = e;
+        }
+        if (worst > d.max_diff)
+            d.max_diff = worst;
+        if (worst > threshold)
+            over++;
+    }
+    d.frac_over = (double)over / ((double)w * h);
+    double mse = se / (3.0 * w * h);
+    d.psnr = mse > 0 ? 10 * log10(255.0 * 255.0 / mse) : 99.0;
+    return d;
+}
+
+void tr_save_failure(const char *name, const uint8_t *got, const uint8_t *ref, int w, int h)
+{
+    mkdir("build", 0755);
+    mkdir("build/test-output", 0755);
+    char path[512], err[256];
+    uint8_t *diff = malloc(4 * (size_t)w * h);
+    for (long i = 0; i < (long)w * h; i++) {
+        for (int k = 0; k < 3; k++) {
+            int e = abs((int)got[4 * i + k] - (int)ref[4 * i + k]) * 8;
+            diff[4 * i + k] = (uint8_t)(e > 255 ? 255 : e);
+        }
+        diff[4 * i + 3] = 255;
+    }
+    snprintf(path, sizeof path, "build/test-output/%s-result.png", name);
+    cu_png_write(path, got, w, h, err, sizeof err);
+    snprintf(path, sizeof path, "build/test-output/%s-reference.png", name);
+    cu_png_write(path, ref, w, h, err, sizeof err);
+    snprintf(path, sizeof path, "build/test-output/%s-diff-x8.png", name);
+    cu_png_write(path, diff, w, h, err, sizeof err);
+    free(diff);
+}

@@ -1,0 +1,28 @@
+# tools/sweep/sweep.mk: `cumulo-sweep`, the speed/accuracy sweep against the path tracer (README "Performance"), and
+# `make sweep`, which runs it with its defaults into build/sweep/ (references cached in build/sweep/ref/) and copies
+# the plot, the table, the presets and the CSV to docs/. Not part of `make check`. SWEEP_ARGS adds options.
+SWEEP_SRCS := tools/sweep/main.c tools/sweep/sweep.c
+SWEEP_OBJS := $(SWEEP_SRCS:%.c=$(B)/obj/%.o)
+CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp $(PLATFORM_CPPFLAGS) -I$(B)/gen $(LIB_CFLAGS)
+$(eval $(call flags_rule,sweep,$(CC) $(CFLAGS_SWEEP)))
+
+$(B)/obj/tools/sweep/%.o: tools/sweep/%.c $(B)/flags/sweep
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS_SWEEP) -c $< -o $@
+
+$(B)/cumulo-sweep: $(SWEEP_OBJS) $(B)/obj/app/session.o $(PLATFORM_OBJS) $(B)/libcumulo.a
+	$(CC) -o $@ $(SWEEP_OBJS) $(B)/obj/app/session.o $(PLATFORM_OBJS) $(B)/libcumulo.a $(PLATFORM_LIBS) $(LIB_LIBS)
+ALL_BINS += $(B)/cumulo-sweep
+
+SWEEP_DIR  ?= $(B)/sweep
+SWEEP_ARGS ?=
+sweep: $(B)/cumulo-sweep $(B)/cumulo-pt
+	@command -v gnuplot >/dev/null 2>&1 || echo "sweep: gnuplot not found: no pareto.png will be drawn (make deps-plots); the CSV and tables are still written"
+	@start=$$(date +%s); \
+	$(TEST_ENV) $(B)/cumulo-sweep --out $(SWEEP_DIR) $(SWEEP_ARGS) || exit $$?; \
+	echo "sweep: took $$(( $$(date +%s) - start )) s"
+	cp $(SWEEP_DIR)/sweep.md docs/sweep.md
+	cp $(SWEEP_DIR)/presets.txt docs/sweep_presets.txt
+	cp $(SWEEP_DIR)/sweep.csv docs/sweep_results.csv
+	@if [ -f $(SWEEP_DIR)/pareto.png ]; then cp $(SWEEP_DIR)/pareto.png docs/sweep_pareto.png && echo "sweep: docs/sweep.md and docs/sweep_pareto.png updated"; \
+	else echo "sweep: docs/sweep.md updated; no $(SWEEP_DIR)/pareto.png (gnuplot missing?), docs/sweep_pareto.png left as it was"; fi
