@@ -1,4 +1,4 @@
-/* src/cli/cmd_bench.c: `cumulo bench`: renders N frames after warm-up and prints glmark2-style lines with the
+/* app/cmd_bench.c: `cumulo bench`: renders N frames after warm-up and prints glmark2-style lines with the
  * median and 95th percentile frame time (wall clock per frame including glFinish); optional CSV. */
 #include "commands.h"
 #include "session.h"
@@ -20,49 +20,86 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+static const char bench_help[] =
+    "usage: cumulo bench SCENE [options]\n"
+    "Renders N frames after a warm-up and prints a glmark2-style line with the median and 95th-percentile frame\n"
+    "time (wall clock per frame, including glFinish).\n"
+    "  --frames N             frames measured (default 30)\n"
+    "  --warmup N             frames rendered first and not measured (default 3)\n"
+    "  --csv FILE             append one row to FILE (header written when the file is new)\n"
+    "  --sun-every-frame      move the sun 0.01 deg of azimuth each frame (measures the sun-dependent passes)\n"
+    "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n" CLI_COMMON_HELP;
+
+static int parse_count(const char *opt, const char *v, int min, int *out)
+{
+    char *end;
+    long n = strtol(v, &end, 10);
+    if (end == v || *end || n < min || n > 1000000) {
+        fprintf(stderr, "cumulo bench: %s expects a count, got '%s'\n", opt, v);
+        return -1;
+    }
+    *out = (int)n;
+    return 0;
+}
+
+enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY };
+
 int cmd_bench(int argc, char **argv)
 {
+    static const struct option longopts[] = {
+        CLI_COMMON_LONGOPTS,
+        {"frames", required_argument, NULL, OPT_FRAMES},
+        {"warmup", required_argument, NULL, OPT_WARMUP},
+        {"csv", required_argument, NULL, OPT_CSV},
+        {"sun-step", required_argument, NULL, OPT_SUN_STEP},
+        {"sun-every-frame", no_argument, NULL, OPT_SUN_EVERY},
+        {NULL, 0, NULL, 0},
+    };
     cli_opts o = {0};
     int frames = 30, warmup = 3, sun_every_frame = 0;
     double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
     const char *csv = NULL;
-    for (int i = 1; i < argc; i++) {
-        int c = cli_common_option(&o, argc, argv, &i);
-        if (c < 0)
+    int c;
+    opterr = 0;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, ":vh", longopts, NULL)) != -1) {
+        int k = cli_common_getopt(&o, c, optarg, "cumulo bench");
+        if (k < 0)
             return 2;
-        if (c)
+        if (k)
             continue;
-        if ((strcmp(argv[i], "--frames") == 0 || strcmp(argv[i], "--warmup") == 0) && i + 1 < argc) {
-            char *end;
-            long v = strtol(argv[i + 1], &end, 10);
-            if (*end || v < (argv[i][2] == 'f' ? 1 : 0) || v > 1000000) {
-                fprintf(stderr, "cumulo bench: %s expects a count, got '%s'\n", argv[i], argv[i + 1]);
+        char *end;
+        switch (c) {
+        case OPT_FRAMES:
+            if (parse_count("--frames", optarg, 1, &frames))
                 return 2;
-            }
-            if (argv[i][2] == 'f') frames = (int)v; else warmup = (int)v;
-            i++;
-        } else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) {
-            csv = argv[++i];
-        } else if (strcmp(argv[i], "--sun-step") == 0 && i + 1 < argc) {
-            char *end;
-            sun_step = strtod(argv[i + 1], &end);
-            if (*end || !(sun_step > 0) || sun_step > 360) {
-                fprintf(stderr, "cumulo bench: --sun-step expects degrees in (0, 360], got '%s'\n", argv[i + 1]);
+            break;
+        case OPT_WARMUP:
+            if (parse_count("--warmup", optarg, 0, &warmup))
+                return 2;
+            break;
+        case OPT_CSV: csv = optarg; break;
+        case OPT_SUN_STEP:
+            sun_step = strtod(optarg, &end);
+            if (end == optarg || *end || !(sun_step > 0) || sun_step > 360) {
+                fprintf(stderr, "cumulo bench: --sun-step expects degrees in (0, 360], got '%s'\n", optarg);
                 return 2;
             }
             sun_every_frame = 1;
-            i++;
-        } else if (strcmp(argv[i], "--sun-every-frame") == 0) {
-            sun_every_frame = 1; /* measure the sun pass too, as when a knob turns the sun */
-        } else if (argv[i][0] == '-') {
-            fprintf(stderr, "cumulo bench: unknown option '%s'\n", argv[i]);
-            return 2;
-        } else if (!o.scene_path) {
-            o.scene_path = argv[i];
-        } else {
+            break;
+        case OPT_SUN_EVERY: sun_every_frame = 1; break; /* measure the sun pass too, as when a knob turns */
+        case 'h': fputs(bench_help, stdout); return 0;
+        case CLI_OPT_VERSION: cli_print_version(stdout, "cumulo"); return 0;
+        case ':': fprintf(stderr, "cumulo bench: %s needs a value\n", argv[optind - 1]); return 2;
+        default: fprintf(stderr, "cumulo bench: unknown option '%s'\n", argv[optind - 1]); return 2;
+        }
+    }
+    for (; optind < argc; optind++) {
+        if (o.scene_path) {
             fprintf(stderr, "cumulo bench: more than one scene given\n");
             return 2;
         }
+        o.scene_path = argv[optind];
     }
     if (!o.scene_path) {
         fprintf(stderr, "usage: cumulo bench SCENE [--frames N] [--warmup N] [--size WxH] [--backend B] "
@@ -70,9 +107,10 @@ int cmd_bench(int argc, char **argv)
         return 2;
     }
     cli_session s;
-    if (cli_session_open(&s, &o)) {
+    int rc = cli_session_open(&s, &o);
+    if (rc) {
         cli_session_close(&s);
-        return 1;
+        return rc;
     }
     char surf[256];
     s.be->describe(s.disp, surf, sizeof surf);
@@ -124,18 +162,21 @@ int cmd_bench(int argc, char **argv)
            frames);
     if (csv) {
         FILE *f = fopen(csv, "a");
-        if (!f) {
-            fprintf(stderr, "cumulo bench: cannot write %s\n", csv);
-        } else {
+        int ok = f != NULL;
+        if (ok) {
             fseek(f, 0, SEEK_END);
             if (ftell(f) == 0)
-                fprintf(f, "scene,options,frames,median_ms,p95_ms,fps,renderer\n");
-            fprintf(f, "%s,%s,%d,%.3f,%.3f,%.2f,\"%s\"\n", base, opts, frames, med, p95, 1000.0 / med,
-                    cu_renderer_gl_string(s.r, 1));
-            fclose(f);
+                ok = fprintf(f, "scene,options,frames,median_ms,p95_ms,fps,renderer\n") > 0;
+            ok = ok && fprintf(f, "%s,%s,%d,%.3f,%.3f,%.2f,\"%s\"\n", base, opts, frames, med, p95, 1000.0 / med,
+                               cu_renderer_gl_string(s.r, 1)) > 0;
+            ok = fclose(f) == 0 && ok;
+        }
+        if (!ok) {
+            fprintf(stderr, "cumulo bench: cannot write %s\n", csv);
+            rc = 1;
         }
     }
     free(t);
     cli_session_close(&s);
-    return 0;
+    return rc;
 }

@@ -1,4 +1,4 @@
-/* src/cli/cmd_render.c: `cumulo render`: one frame to a PNG (tone-mapped sRGB) or PFM (linear radiance). */
+/* app/cmd_render.c: `cumulo render`: one frame to a PNG (tone-mapped sRGB) or PFM (linear radiance). */
 #include "commands.h"
 #include "session.h"
 #include <stdint.h>
@@ -12,31 +12,44 @@ static int ends_with(const char *s, const char *suffix)
     return a >= b && strcmp(s + a - b, suffix) == 0;
 }
 
+static const char render_help[] =
+    "usage: cumulo render SCENE -o OUT.png|OUT.pfm [options]\n"
+    "Renders one frame of SCENE headless: OUT.png tone-mapped 8-bit sRGB, OUT.pfm linear radiance (float).\n"
+    "  -o, --output FILE      the image to write (.png or .pfm)\n" CLI_COMMON_HELP;
+
 int cmd_render(int argc, char **argv)
 {
+    static const struct option longopts[] = {CLI_COMMON_LONGOPTS, {"output", required_argument, NULL, 'o'},
+                                             {NULL, 0, NULL, 0}};
     cli_opts o = {0};
     const char *out = NULL;
-    for (int i = 1; i < argc; i++) {
-        int c = cli_common_option(&o, argc, argv, &i);
-        if (c < 0)
+    int c;
+    opterr = 0;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, ":o:vh", longopts, NULL)) != -1) {
+        int k = cli_common_getopt(&o, c, optarg, "cumulo render");
+        if (k < 0)
             return 2;
-        if (c)
+        if (k)
             continue;
-        if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
-            out = argv[++i];
-        } else if (argv[i][0] == '-') {
-            fprintf(stderr, "cumulo render: unknown option '%s'\n", argv[i]);
-            return 2;
-        } else if (!o.scene_path) {
-            o.scene_path = argv[i];
-        } else {
-            fprintf(stderr, "cumulo render: more than one scene given ('%s')\n", argv[i]);
+        switch (c) {
+        case 'o': out = optarg; break;
+        case 'h': fputs(render_help, stdout); return 0;
+        case CLI_OPT_VERSION: cli_print_version(stdout, "cumulo"); return 0;
+        case ':': fprintf(stderr, "cumulo render: %s needs a value\n", argv[optind - 1]); return 2;
+        default: fprintf(stderr, "cumulo render: unknown option '%s'\n", argv[optind - 1]); return 2;
+        }
+    }
+    for (; optind < argc; optind++) {
+        if (o.scene_path) {
+            fprintf(stderr, "cumulo render: more than one scene given ('%s')\n", argv[optind]);
             return 2;
         }
+        o.scene_path = argv[optind];
     }
     if (!o.scene_path || !out) {
         fprintf(stderr, "usage: cumulo render SCENE -o OUT.png|OUT.pfm [--size WxH] [--backend egl|osmesa] "
-                        "[--set section.key=value]...\n");
+                        "[--set section.key=value]... (cumulo render --help)\n");
         return 2;
     }
     int pfm = ends_with(out, ".pfm");
@@ -46,12 +59,12 @@ int cmd_render(int argc, char **argv)
     }
     o.linear = pfm;
     cli_session s;
-    if (cli_session_open(&s, &o) || cli_session_render(&s)) {
+    int rc = cli_session_open(&s, &o);
+    if (rc || (rc = cli_session_render(&s)) != 0) {
         cli_session_close(&s);
-        return 1;
+        return rc;
     }
     cu_error err = {"cannot read the frame back"};
-    int rc = 0;
     if (pfm) {
         float *px = malloc(sizeof(float) * 3 * (size_t)s.width * s.height);
         if (!px || cli_session_read_rgbf(&s, px) || cu_write_pfm(out, px, s.width, s.height, &err)) {

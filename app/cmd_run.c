@@ -1,4 +1,4 @@
-/* src/cli/cmd_run.c: `cumulo run` — the interactive/kiosk loop: a display back end (drm, x11, wayland, headless),
+/* app/cmd_run.c: `cumulo run` — the interactive/kiosk loop: a display back end (drm, x11, wayland, headless),
  * inputs that move the sun (GPIO knob, evdev keyboards and dials, stdin commands), and the renderer. */
 #include "config.h"
 #include "commands.h"

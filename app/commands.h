@@ -1,4 +1,4 @@
-/* src/cli/commands.h: the subcommands of the `cumulo` program; each returns the process exit status. */
+/* app/commands.h: the subcommands of the `cumulo` program; each returns the process exit status. */
 #ifndef CU_CLI_COMMANDS_H
 #define CU_CLI_COMMANDS_H
 int cmd_render(int argc, char **argv);

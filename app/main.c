@@ -1,32 +1,41 @@
-/* src/cli/main.c: the `cumulo` program: dispatches to the subcommands render, bench and run. */
+/* app/main.c: the `cumulo` program: dispatches to the subcommands render, bench and run. */
 #include "commands.h"
+#include "session.h"
 #include <stdio.h>
 #include <string.h>
 
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: cumulo <command> [options]\n"
-            "  render SCENE -o OUT.png|OUT.pfm [--size WxH] [--backend egl|osmesa] [--set section.key=value]...\n"
-            "  bench  SCENE [--frames N] [--warmup N] [--size WxH] [--backend B] [--set k=v]... [--csv FILE]\n"
-            "  run    SCENE --platform drm|x11|wayland|headless [--frames N] [--fullscreen] [--input SPEC]...\n"
-            "  sweep  [--scenes a,b,c] [--out DIR]   speed/accuracy sweep against the path tracer (make sweep)\n");
+            "usage: cumulo COMMAND [options]   (cumulo COMMAND --help for its options)\n"
+            "  render SCENE -o OUT.png|OUT.pfm   one frame to a PNG (tone-mapped) or PFM (linear radiance)\n"
+            "  bench  SCENE [--frames N] ...     frame times, glmark2-style lines, optional CSV\n"
+            "  run    SCENE --platform P ...     the interactive / kiosk loop: a display, inputs that move the sun\n"
+            "  --version                         version, display back ends and inputs of this build\n"
+            "Exit status: 0 success, 1 runtime failure (bad scene file, GL or I/O error), 2 usage error.\n");
 }
 
 int main(int argc, char **argv)
 {
-    if (argc < 2 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0) {
-        usage(argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
     }
     const char *cmd = argv[1];
+    if (strcmp(cmd, "-h") == 0 || strcmp(cmd, "--help") == 0 || strcmp(cmd, "help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        cli_print_version(stdout, "cumulo");
+        return 0;
+    }
     if (strcmp(cmd, "render") == 0)
         return cmd_render(argc - 1, argv + 1);
     if (strcmp(cmd, "bench") == 0)
         return cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "run") == 0)
         return cmd_run(argc - 1, argv + 1);
-    fprintf(stderr, "cumulo: unknown command '%s'\n", cmd);
-    usage(stderr);
+    fprintf(stderr, "cumulo: unknown command '%s' (cumulo --help lists them)\n", cmd);
     return 2;
 }

@@ -1,20 +1,23 @@
-/* src/cli/session.h: what every cumulo subcommand shares: parse the common options, open a display back end,
- * load the scene with --set overrides, create the renderer, read pixels back. */
-#ifndef CU_CLI_SESSION_H
-#define CU_CLI_SESSION_H
-#include "display.h"
+/* app/session.h: what every cumulo subcommand (and the sweep) shares: the common options, the data folder, opening a
+ * display back end with a scene and a renderer, rendering, reading pixels back. */
+#ifndef CU_APP_SESSION_H
+#define CU_APP_SESSION_H
 #include "cumulo.h"
+#include "display.h"
+#include <getopt.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #define CLI_MAX_SETS 64
 
 typedef struct cli_opts {
     const char *scene_path;
-    const char *backend;      /* NULL = egl */
+    const char *backend;      /* NULL = egl (headless) */
     int width, height;        /* 0 = scene's */
     int linear;               /* render linear radiance into a float target */
     const char *sets[CLI_MAX_SETS];
     int nsets;
+    const char *data_dir;     /* --data-dir; NULL = cli_data_dir()'s search */
     int verbose;
 } cli_opts;
 
@@ -26,12 +29,39 @@ typedef struct cli_session {
     unsigned fbo;
     int width, height;
     int linear;
+    int verbose;
 } cli_session;
 
-/* Consumes a common option at argv[*i] (--size, --backend, --set, -v); returns 1 if it was one, 0 if not, -1 on a
- * bad value (message printed). */
+/* getopt_long entries of the common options, for a subcommand's option table; their ids are CLI_OPT_*. */
+enum { CLI_OPT_SIZE = 0x100, CLI_OPT_BACKEND, CLI_OPT_SET, CLI_OPT_DATA_DIR, CLI_OPT_HELP, CLI_OPT_VERSION };
+#define CLI_COMMON_LONGOPTS                                                                                      \
+    {"size", required_argument, NULL, CLI_OPT_SIZE}, {"backend", required_argument, NULL, CLI_OPT_BACKEND},    \
+    {"platform", required_argument, NULL, CLI_OPT_BACKEND}, {"set", required_argument, NULL, CLI_OPT_SET},    \
+    {"data-dir", required_argument, NULL, CLI_OPT_DATA_DIR}, {"verbose", no_argument, NULL, 'v'},             \
+    {"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, CLI_OPT_VERSION}
+/* The common options' lines for a subcommand's --help. */
+#define CLI_COMMON_HELP                                                                                          \
+    "  --size WxH             output size in pixels, 1..16384 (default: the scene's [output] size)\n"           \
+    "  --backend NAME         display back end: egl (= headless), osmesa, ... (cumulo --version lists them)\n"   \
+    "  --set SECTION.KEY=V    override one scene value (repeatable; ellipsoid.N.key for the N-th ellipsoid)\n"   \
+    "  --data-dir DIR         the tables (mie_cloud.tbl, ...); default $CUMULO_DATA_DIR, the build tree's\n"      \
+    "                         data/ when run from it, else the installed copy\n"                                 \
+    "  -v, --verbose          log the renderer's choices (GL strings, fallbacks)\n"                            \
+    "  -h, --help             this help; --version: version and back ends\n"
+
+/* Handles a common option returned by getopt_long (id, optarg): 1 = handled, 0 = not common, -1 = bad value (one
+ * line printed, exit 2). `cmd` names the subcommand in messages. */
+int cli_common_getopt(cli_opts *o, int id, const char *arg, const char *cmd);
+/* Consumes a common option at argv[*i] for hand-written parsers: 1 if it was one, 0 if not, -1 on a bad value. */
 int cli_common_option(cli_opts *o, int argc, char **argv, int *i);
-/* Opens everything; prints a one-line error and returns non-zero on failure. */
+/* Prints "cumulo VERSION (git describe)" and the display back ends and inputs of this build. */
+void cli_print_version(FILE *f, const char *program);
+/* The tables' folder: --data-dir, else $CUMULO_DATA_DIR, else ../data beside the executable when it holds the
+ * tables (a build tree), else NULL (the library's installed default). */
+const char *cli_data_dir(const cli_opts *o);
+
+/* Opens everything; prints one line and returns 2 for a usage error (unknown back end, bad --set), 1 for a runtime
+ * failure, 0 on success. cli_session_close is safe after a failed open. */
 int cli_session_open(cli_session *s, const cli_opts *o);
 int cli_session_render(cli_session *s);
 /* Reads the frame back (top row first): RGBA8 for tone-mapped, RGB float for linear. */

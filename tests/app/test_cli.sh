@@ -1,4 +1,4 @@
-# tests/test_cli.sh: the cumulo program end to end: renders to PNG and PFM, bench output format, and clear errors with
+# tests/app/test_cli.sh: the cumulo program end to end: renders to PNG and PFM, bench output format, and clear errors with
 # the right exit status for bad scenes, bad options and bad values. Run from the repository root.
 . tests/lib.sh
 C=${CUMULO:-build/cumulo}
@@ -28,11 +28,34 @@ t_expect "binary garbage" 1 "not a text file" -- $C render "$T/garbage.scene" -o
 : > "$T/empty.scene"
 t_expect "empty scene" 1 "$T/empty.scene:1:1: empty scene file" -- $C render "$T/empty.scene" -o "$T/x.png"
 t_expect "missing scene" 1 "nope.scene: cannot open" -- $C render nope.scene -o "$T/x.png"
-t_expect "bad --set key" 1 "unknown key 'cloud.colour'" -- $C render scenes/cumulus.scene -o "$T/x.png" --set cloud.colour=1
-t_expect "bad --set value" 1 "'radii' must be positive, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --set key" 2 "unknown key 'cloud.colour'" -- $C render scenes/cumulus.scene -o "$T/x.png" --set cloud.colour=1
+t_expect "bad --set value" 2 "'radii' must be positive, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
 t_expect "bad --size" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size 0x10
 t_expect "bad output type" 2 "must end in .png or .pfm" -- $C render scenes/cumulus.scene -o "$T/x.jpg"
-t_expect "unknown back end" 1 "unknown back end 'vulkan'" -- $C render scenes/cumulus.scene -o "$T/x.png" --backend vulkan
+t_expect "unknown back end" 2 "unknown back end 'vulkan'" -- $C render scenes/cumulus.scene -o "$T/x.png" --backend vulkan
+t_expect "missing -o value" 2 "-o needs a value" -- $C render scenes/cumulus.scene -o
+t_expect "unknown render option" 2 "unknown option '--colour'" -- $C render scenes/cumulus.scene --colour
+t_expect "size overflow" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size 4294967360x48
+t_expect "bench unwritable csv" 1 "cannot write /nonexistent/d/x.csv" -- $C bench scenes/cumulus.scene --frames 1 --warmup 0 --size 8x8 --csv /nonexistent/d/x.csv
+# --help and --version: stdout, exit 0, every option of the subcommand described.
+for sub in "" render bench run; do
+  out=$($C $sub --help 2>&1); rc=$?
+  if [ $rc -eq 0 ] && [ -n "$out" ]; then t_ok "cumulo $sub --help"; else t_fail "cumulo $sub --help" "exit $rc: $out"; fi
+done
+for opt in --output --size --backend --set --data-dir --verbose; do
+  case "$($C render --help)" in *"$opt"*) t_ok "render --help describes $opt" ;; *) t_fail "render --help describes $opt" "missing" ;; esac
+done
+for opt in --frames --warmup --csv --sun-every-frame --sun-step; do
+  case "$($C bench --help)" in *"$opt"*) t_ok "bench --help describes $opt" ;; *) t_fail "bench --help describes $opt" "missing" ;; esac
+done
+v=$($C --version); rc=$?
+case "$v" in "cumulo "*"display back ends: headless egl"*"inputs: stdin evdev"*) [ $rc -eq 0 ] && t_ok "cumulo --version" || t_fail "cumulo --version" "exit $rc" ;;
+  *) t_fail "cumulo --version" "$v" ;; esac
+# The tables come from the build tree's data/ when run from it, whatever the working directory.
+if (cd / && env -u CUMULO_DATA_DIR "$OLDPWD/$C" render "$OLDPWD/scenes/cumulus.scene" --size 8x8 -o "$OLDPWD/$T/cwd.png" >/dev/null 2>"$OLDPWD/$T/cwd.err"); then
+  t_ok "build-tree data found from another directory"
+else t_fail "build-tree data found from another directory" "$(cat "$T/cwd.err")"; fi
+t_expect "bad --data-dir" 1 "/nonexistent-data/mie_cloud.tbl" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/x.png" --data-dir /nonexistent-data
 t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
 t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
 t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
