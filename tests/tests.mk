@@ -1,6 +1,6 @@
 # tests/tests.mk: every test of `make check`, one layout: tests/<part>/test_*.c (cmocka) and tests/<part>/test_*.sh
 # (tests/lib.sh), all run by tests/run_tests.sh. Every test program is declared through one template.
-TEST_CPPFLAGS := -Iinclude -Isrc/core -Isrc/gpu -I$(B)/gen/lib $(PLATFORM_CPPFLAGS) -Itests/gpu -Itools/pathtrace \
+TEST_CPPFLAGS := -Iinclude -Isrc/core -Isrc/gpu -I$(B)/gen/lib $(PLATFORM_CPPFLAGS) -Iapp -Itests/gpu -Itools/pathtrace \
                  -Itools/mie -Itools/slab
 CFLAGS_TEST := $(CFLAGS_BASE) $(TEST_CPPFLAGS) $(CMOCKA_CFLAGS) $(LIB_CFLAGS) $(EGL_CFLAGS) $(OSMESA_CFLAGS)
 $(eval $(call flags_rule,test,$(CC) $(CFLAGS_TEST)))
@@ -16,7 +16,7 @@ endef
 LIB   := $(B)/libcumulo.a
 CORE  := $(B)/libcumulo-core.a
 # What the image tests link to open a headless context (EGL surfaceless and OSMesa).
-HEADLESS := tests/gpu/render_util.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
+HEADLESS := tests/gpu/render_util.c app/session.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
             platform/display/osmesa.c platform/display/headless_fbo.c
 HEADLESS_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(LIB_LIBS)
 

@@ -1,4 +1,4 @@
-/* tests/render_util.c: headless rendering and image comparison helpers for the tests (see render_util.h). */
+/* tests/gpu/render_util.c: headless rendering and image comparison helpers for the tests (see render_util.h). */
 #include "render_util.h"
 #include "image.h"
 #include <GLES3/gl3.h>
@@ -8,34 +8,18 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static void *getproc(void *user, const char *name)
-{
-    tr_ctx *c = user;
-    return c->be->get_proc_address(c->disp, name);
-}
-
 int tr_open(tr_ctx *c, const cu_display_backend *be, int w, int h, int linear)
 {
     memset(c, 0, sizeof *c);
-    c->be = be;
     c->w = w;
     c->h = h;
     c->linear = linear;
-    cu_display_opts o = {0};
-    o.width = w;
-    o.height = h;
-    o.float_target = linear;
-    if (be->open(&c->disp, &o, c->err, sizeof c->err))
+    /* The same opening as every cumulo subcommand (app/session.c); tables as the program finds them. */
+    if (cli_session_attach(&c->s, be, w, h, linear, getenv("CUMULO_DATA_DIR"), 0, c->err, sizeof c->err))
         return 1;
-    cu_desc d = {0};
-    d.get_proc_address = getproc;
-    d.get_proc_user = c;
-    d.data_dir = getenv("CUMULO_DATA_DIR"); /* as the cumulo program: tables from elsewhere than ./data */
-    cu_error e;
-    if (cu_renderer_create(&c->r, &d, &e)) {
-        snprintf(c->err, sizeof c->err, "%s", e.msg);
-        return 1;
-    }
+    c->be = c->s.be;
+    c->disp = c->s.disp;
+    c->r = c->s.r;
     return 0;
 }
 
@@ -124,9 +108,7 @@ int tr_read_rgba8(tr_ctx *c, uint8_t *rgba)
 
 void tr_close(tr_ctx *c)
 {
-    cu_renderer_destroy(c->r);
-    if (c->disp)
-        c->be->close(c->disp);
+    cli_session_close(&c->s);
     memset(c, 0, sizeof *c);
 }
 

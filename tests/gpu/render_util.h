@@ -1,15 +1,17 @@
-/* tests/render_util.h: headless rendering for tests: open a back end by name, render a scene (file or text, with
+/* tests/gpu/render_util.h: headless rendering for tests: open a back end by name, render a scene (file or text, with
  * --set style overrides) to linear float or tone-mapped RGBA8, and compare images with stated tolerances. */
 #ifndef CU_TEST_RENDER_UTIL_H
 #define CU_TEST_RENDER_UTIL_H
-#include "display.h"
 #include "cumulo.h"
+#include "display.h"
+#include "session.h"
 #include <stdint.h>
 
 extern const cu_display_backend cu_display_egl;
 extern const cu_display_backend cu_display_osmesa;
 
 typedef struct tr_ctx {
+    cli_session s;           /* what the cumulo program opens (app/session.h); the three below alias it */
     const cu_display_backend *be;
     cu_display *disp;
     cu_renderer *r;

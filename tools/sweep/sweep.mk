@@ -10,8 +10,8 @@ $(B)/obj/tools/sweep/%.o: tools/sweep/%.c $(B)/flags/sweep
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_SWEEP) -c $< -o $@
 
-$(B)/cumulo-sweep: $(SWEEP_OBJS) $(B)/obj/app/session.o $(PLATFORM_OBJS) $(B)/libcumulo.a
-	$(CC) -o $@ $(SWEEP_OBJS) $(B)/obj/app/session.o $(PLATFORM_OBJS) $(B)/libcumulo.a $(PLATFORM_LIBS) $(LIB_LIBS)
+$(B)/cumulo-sweep: $(SWEEP_OBJS) $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a
+	$(CC) -o $@ $(SWEEP_OBJS) $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a $(PLATFORM_LIBS) $(LIB_LIBS)
 ALL_BINS += $(B)/cumulo-sweep
 
 SWEEP_DIR  ?= $(B)/sweep

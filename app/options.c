@@ -1,0 +1,116 @@
+/* app/options.c: the options every cumulo subcommand shares, --version, and opening a scene on a display. */
+#include "config.h"
+#include "session.h"
+#include "version.h"
+#include <stdlib.h>
+#include <string.h>
+
+int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
+{
+    switch (id) {
+    case 'v':
+        o->verbose = 1;
+        return 1;
+    case CLI_OPT_SIZE: {
+        int w, h;
+        char tail;
+        if (sscanf(v, "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384 ||
+            strspn(v, "0123456789x") != strlen(v) || strlen(v) > 11) {
+            fprintf(stderr, "%s: --size expects WxH with 1..16384, got '%s'\n", cmd, v);
+            return -1;
+        }
+        o->width = w;
+        o->height = h;
+        return 1;
+    }
+    case CLI_OPT_BACKEND:
+        o->backend = v;
+        return 1;
+    case CLI_OPT_DATA_DIR:
+        o->data_dir = v;
+        return 1;
+    case CLI_OPT_SET:
+        if (o->nsets == CLI_MAX_SETS) {
+            fprintf(stderr, "%s: at most %d --set options\n", cmd, CLI_MAX_SETS);
+            return -1;
+        }
+        o->sets[o->nsets++] = v;
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+int cli_common_option(cli_opts *o, int argc, char **argv, int *i)
+{
+    static const struct { const char *name; int id; } opts[] = {
+        {"--size", CLI_OPT_SIZE}, {"--backend", CLI_OPT_BACKEND}, {"--platform", CLI_OPT_BACKEND},
+        {"--set", CLI_OPT_SET},   {"--data-dir", CLI_OPT_DATA_DIR},
+    };
+    const char *a = argv[*i];
+    if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0)
+        return cli_common_getopt(o, 'v', NULL, "cumulo");
+    for (size_t k = 0; k < sizeof opts / sizeof opts[0]; k++) {
+        if (strcmp(a, opts[k].name) != 0)
+            continue;
+        if (*i + 1 >= argc) {
+            fprintf(stderr, "cumulo: %s needs a value\n", a);
+            return -1;
+        }
+        return cli_common_getopt(o, opts[k].id, argv[++*i], "cumulo");
+    }
+    return 0;
+}
+
+void cli_print_version(FILE *f, const char *program)
+{
+    fprintf(f, "%s %s (%s), libcumulo %s\n", program, CU_VERSION, CU_GIT_DESCRIBE, cu_version());
+    fprintf(f, "display back ends: headless");
+    for (int i = 0; cu_display_backends[i]; i++)
+        fprintf(f, " %s", cu_display_backends[i]->name);
+    fprintf(f, "\ninputs: stdin evdev%s\n", CU_HAVE_GPIOD ? " gpio" : "");
+    fprintf(f, "data: %s\n", cu_default_data_dir());
+}
+
+static int fail_open(cli_session *s, int rc, const char *msg)
+{
+    (void)s;
+    fprintf(stderr, "cumulo: %s\n", msg);
+    return rc;
+}
+
+int cli_session_open(cli_session *s, const cli_opts *o)
+{
+    memset(s, 0, sizeof *s);
+    s->verbose = o->verbose;
+    cu_error e;
+    if (cu_scene_load(&s->scene, o->scene_path, &e))
+        return fail_open(s, 1, e.msg);
+    for (int i = 0; i < o->nsets; i++)
+        if (cu_scene_set(s->scene, o->sets[i], &e))
+            return fail_open(s, 2, e.msg);
+    cu_scene_output_size(s->scene, &s->width, &s->height);
+    if (o->width) {
+        s->width = o->width;
+        s->height = o->height;
+    }
+    const cu_display_backend *be = cu_display_find(o->backend);
+    if (!be) {
+        char msg[512];
+        int n = snprintf(msg, sizeof msg, "unknown back end '%s'; built:", o->backend);
+        for (int i = 0; cu_display_backends[i] && n > 0 && n < (int)sizeof msg; i++)
+            n += snprintf(msg + n, sizeof msg - (size_t)n, " %s", cu_display_backends[i]->name);
+        return fail_open(s, 2, msg);
+    }
+    cu_scene *scene = s->scene;
+    char err[600];
+    if (cli_session_attach(s, be, s->width, s->height, o->linear, cli_data_dir(o), o->verbose, err, sizeof err)) {
+        s->scene = scene;
+        return fail_open(s, 1, err);
+    }
+    s->scene = scene;
+    if (cu_renderer_set_scene(s->r, s->scene, &e))
+        return fail_open(s, 1, e.msg);
+    return 0;
+}
+
