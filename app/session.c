@@ -23,7 +23,7 @@ static void *getproc(void *user, const char *name)
 
 const char *cli_data_dir(const cli_opts *o)
 {
-    static char exe_data[PATH_MAX];
+    static char exe_data[PATH_MAX + 16];
     if (o->data_dir)
         return o->data_dir;
     const char *env = getenv("CUMULO_DATA_DIR");
@@ -40,7 +40,7 @@ const char *cli_data_dir(const cli_opts *o)
             struct stat sb;
             char probe[PATH_MAX + 32];
             snprintf(probe, sizeof probe, "%s/../data/mie_cloud.tbl", exe);
-            if (stat(probe, &sb) == 0 && strlen(exe) + 8 < sizeof exe_data) {
+            if (stat(probe, &sb) == 0) {
                 snprintf(exe_data, sizeof exe_data, "%s/../data", exe);
                 return exe_data;
             }

@@ -29,10 +29,10 @@ $(B)/obj/platform/input/gpio.o: XCFLAGS := $(GPIO_CFLAGS) $(GPIO_API_FLAG)
 
 # xdg-shell's client glue, generated from wayland-protocols' XML by wayland-scanner.
 WL_GEN := $(B)/gen/xdg-shell-client-protocol.h $(B)/gen/xdg-shell-protocol.inc
-$(B)/gen/xdg-shell-client-protocol.h: $(B)/config.mk
+$(B)/gen/xdg-shell-client-protocol.h: $(WAYLAND_XDG_XML)
 	@mkdir -p $(@D)
 	$(WAYLAND_SCANNER) client-header $(WAYLAND_XDG_XML) $@
-$(B)/gen/xdg-shell-protocol.inc: $(B)/config.mk
+$(B)/gen/xdg-shell-protocol.inc: $(WAYLAND_XDG_XML)
 	@mkdir -p $(@D)
 	$(WAYLAND_SCANNER) private-code $(WAYLAND_XDG_XML) $@
 $(B)/obj/platform/display/wayland.o: $(WL_GEN)

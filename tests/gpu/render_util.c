@@ -68,42 +68,14 @@ int tr_render(tr_ctx *c, const char *scene, const char *const *sets)
     return rc;
 }
 
-static int read_raw(tr_ctx *c, GLenum type, void *buf)
-{
-    void *rp = c->be->get_proc_address(c->disp, "glReadPixels");
-    void *bf = c->be->get_proc_address(c->disp, "glBindFramebuffer");
-    void (*read)(GLint, GLint, GLsizei, GLsizei, GLenum, GLenum, void *);
-    void (*bind)(GLenum, GLuint);
-    memcpy(&read, &rp, sizeof rp);
-    memcpy(&bind, &bf, sizeof bf);
-    unsigned fbo;
-    int w, h;
-    c->be->frame(c->disp, &fbo, &w, &h);
-    bind(GL_FRAMEBUFFER, fbo);
-    read(0, 0, w, h, GL_RGBA, type, buf);
-    return 0;
-}
-
 int tr_read_rgbf(tr_ctx *c, float *rgb)
 {
-    float *t = malloc(sizeof(float) * 4 * (size_t)c->w * c->h);
-    read_raw(c, GL_FLOAT, t);
-    for (int y = 0; y < c->h; y++)
-        for (int x = 0; x < c->w; x++)
-            for (int k = 0; k < 3; k++)
-                rgb[((size_t)y * c->w + x) * 3 + k] = t[((size_t)(c->h - 1 - y) * c->w + x) * 4 + k];
-    free(t);
-    return 0;
+    return cli_session_read_rgbf(&c->s, rgb);
 }
 
 int tr_read_rgba8(tr_ctx *c, uint8_t *rgba)
 {
-    uint8_t *t = malloc(4 * (size_t)c->w * c->h);
-    read_raw(c, GL_UNSIGNED_BYTE, t);
-    for (int y = 0; y < c->h; y++)
-        memcpy(rgba + (size_t)y * c->w * 4, t + (size_t)(c->h - 1 - y) * c->w * 4, (size_t)c->w * 4);
-    free(t);
-    return 0;
+    return cli_session_read_rgba8(&c->s, rgba);
 }
 
 void tr_close(tr_ctx *c)
