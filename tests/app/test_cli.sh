@@ -56,6 +56,10 @@ if (cd / && env -u CUMULO_DATA_DIR "$OLDPWD/$C" render "$OLDPWD/scenes/cumulus.s
   t_ok "build-tree data found from another directory"
 else t_fail "build-tree data found from another directory" "$(cat "$T/cwd.err")"; fi
 t_expect "bad --data-dir" 1 "/nonexistent-data/mie_cloud.tbl" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/x.png" --data-dir /nonexistent-data
+# A full disk is an error, not "wrote" (/dev/full fails every write with ENOSPC).
+ln -sf /dev/full "$T/full.png"; ln -sf /dev/full "$T/full.pfm"
+t_expect "PNG onto a full disk" 1 "No space left on device" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/full.png"
+t_expect "PFM onto a full disk" 1 "write failed" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/full.pfm"
 t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
 t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
 t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
