@@ -44,9 +44,9 @@ typedef struct file_state {
     int have_section[CU_SCENE_SECTION_COUNT];
     int ell_line[CU_MAX_ELLIPSOIDS];          /* line of each [ellipsoid] header */
     unsigned ell_seen[CU_MAX_ELLIPSOIDS];     /* bit i: cu_ellipsoid_keys[i] given */
-    unsigned char seen[CU_SCENE_KEY_COUNT];   /* keys given in the current section instance */
+    unsigned char seen[CU_SCENE_KEY_COUNT];   /* by index in the section's table: keys given in this instance */
 } file_state;
-typedef char ell_keys_fit_bits[CU_ELLIPSOID_KEY_COUNT <= 32 ? 1 : -1];
+typedef char ell_keys_fit[CU_ELLIPSOID_KEY_COUNT <= 32 && CU_ELLIPSOID_KEY_COUNT <= CU_SCENE_KEY_COUNT ? 1 : -1];
 
 static int post_checks(cu_scene *s, const char *file, const file_state *fs, cu_error *err)
 {
