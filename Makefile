@@ -76,6 +76,7 @@ include app/app.mk
 include tools/mie/mie.mk
 include tools/slab/slab.mk
 include tools/pathtrace/pathtrace.mk
+include tools/keys/keys.mk
 include tests/tests.mk
 include tests/vm/vm.mk
 include tools/sweep/sweep.mk

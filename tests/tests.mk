@@ -20,10 +20,12 @@ HEADLESS := tests/gpu/render_util.c app/session.c platform/display/egl_common.c 
             platform/display/osmesa.c platform/display/headless_fbo.c
 HEADLESS_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(LIB_LIBS)
 
-# core: the scene, phase tables, geometry and a C twin of the shader's per-sample maths.
+# core: the scene and its key table (docs included), phase tables, geometry and a C twin of the shader's per-sample maths.
 $(eval $(call test_program,test_scene,tests/core/test_scene.c $(CORE),,$(LIB_LIBS)))
 $(eval $(call test_program,test_phase,tests/core/test_phase.c $(CORE),,$(LIB_LIBS)))
 $(eval $(call test_program,test_math,tests/core/test_math.c $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_keys,tests/core/test_keys.c $(CORE),,$(LIB_LIBS)))
+CHECK_TESTS += tests/core/test_keys.sh
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 

@@ -1,5 +1,6 @@
-/* src/presets.c: the quality presets (see presets.h). Copied from docs/sweep_presets.txt, written by `make sweep`;
- * tests/test_cli.sh checks that the two agree. */
+/* src/core/presets.c: the quality presets (see presets.h). Copied from docs/sweep_presets.txt, written by `make sweep`;
+ * tests/app/test_cli.sh checks that the two agree, tests/core/test_keys.c that every entry is a key of the table in
+ * scene_keys.c with a value in its range. */
 #include "presets.h"
 
 static const char *const SETTINGS[CU_PRESET_COUNT] = {

@@ -1,4 +1,5 @@
-/* src/scene.h: the scene description (camera, sun, cloud, ellipsoids, quality knobs) and its defaults. */
+/* src/core/scene.h: the scene description (camera, sun, cloud, ellipsoids, quality knobs); its keys, defaults and
+ * ranges are the table in scene_keys.c. */
 #ifndef CU_SCENE_H
 #define CU_SCENE_H
 #include "cumulo.h"
@@ -19,7 +20,7 @@ typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, 
 
 struct cu_scene {
     char name[256];
-    unsigned char explicit_key[96]; /* keys the file or --set gave (a preset does not override them) */
+    unsigned char explicit_key[96]; /* by cu_scene_keys index: keys the file or --set gave (a preset leaves them) */
     /* [output] */
     int width, height;
     double exposure;          /* multiplies radiance (kcd/m^2) before tone mapping */

@@ -1,0 +1,236 @@
+/* src/core/scene_keys.c: the table of scene keys and sections (see scene_keys.h) and the syntax of one key's value. */
+#include "scene_keys.h"
+#include "error.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
+static const char *const profile_names[] = {"tapered", "kol", NULL};
+static const char *const ms_names[] = {"none", "octaves", "slab", "collector", NULL};
+static const char *const sky_names[] = {"preetham", "constant", NULL};
+static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
+static const char *const filter_names[] = {"nearest", "bilinear", NULL};
+static const char *const bool_names[] = {"off", "on", NULL};
+static const char *const integration_names[] = {"exponential", "kol", NULL};
+static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in cu_preset order (presets.h) */
+
+#define S(f) offsetof(cu_scene, f)
+#define E(f) offsetof(cu_ellipsoid, f)
+/* One key per line: section, name, type, count, values, default, lo, hi, lo_open, multiple, unit, doc, field. */
+#define NUM(sec, key, n, def, lo, hi, open, unit, doc, field) \
+    {sec, key, CU_KEY_NUMBER, n, NULL, def, lo, hi, open, 0, unit, doc, field, 0}
+#define INT(sec, key, n, def, lo, hi, mult, unit, doc, field) \
+    {sec, key, CU_KEY_INTEGER, n, NULL, def, lo, hi, 0, mult, unit, doc, field, 0}
+#define ENUM(sec, key, names, def, doc, field) {sec, key, CU_KEY_ENUM, 1, names, def, 0, 0, 0, 0, "", doc, field, 0}
+#define BOOL(sec, key, def, doc, field) {sec, key, CU_KEY_BOOL, 1, bool_names, def, 0, 0, 0, 0, "", doc, field, 0}
+
+const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
+    INT("output", "size", 2, "640 480", 1, 16384, 0, "pixels", "image width and height", S(width)),
+    NUM("output", "exposure", 1, "0.06", 0, 1e6, 1, "", "multiplies radiance (kcd/m^2) before the filmic tone curve",
+        S(exposure)),
+    NUM("camera", "position", 3, "0 0 0", -1e7, 1e7, 0, "m", "where the camera is; world: y up, x east, z south",
+        S(cam_pos)),
+    NUM("camera", "look_at", 3, "0 0 0", -1e7, 1e7, 0, "m", "the point the camera looks at (not its position)",
+        S(cam_look)),
+    NUM("camera", "fov", 1, "50", 0, 179, 1, "degrees", "vertical field of view", S(cam_fov)),
+    NUM("sun", "elevation", 1, "0", -90, 90, 0, "degrees", "angle of the sun above the horizon", S(sun_elevation)),
+    NUM("sun", "azimuth", 1, "0", -360, 720, 0, "degrees", "direction of the sun, from north toward east",
+        S(sun_azimuth)),
+    NUM("sun", "turbidity", 1, "2.5", 1.7, 10, 0, "", "Preetham atmospheric turbidity", S(turbidity)),
+    {"sun", "irradiance", CU_KEY_NUMBER, 3, NULL, NULL, 0, 1e9, 0, 0, "",
+     "RGB irradiance on a plane perpendicular to the rays; unset: from the Preetham model", S(sun_irradiance),
+     S(has_sun_irradiance)},
+    ENUM("sky", "model", sky_names, "preetham", "preetham, or constant: uniform radiance from every direction",
+         S(sky_model)),
+    NUM("sky", "color", 3, "0 0 0", 0, 1e9, 0, "", "RGB radiance of the constant sky", S(sky_color)),
+    NUM("sky", "ground_albedo", 1, "0.2", 0, 1, 0, "", "Lambertian ground seen below the horizon", S(ground_albedo)),
+    NUM("cloud", "density", 1, "400", 0, 1e7, 0, "cm^-3", "droplets in the core (rho_0)", S(density_cm3)),
+    NUM("cloud", "droplet_radius", 1, "6", 0, 1000, 1, "um",
+        "effective radius r_e (extinction 2 pi r_e^2 when the phase is analytic)", S(droplet_radius_um)),
+    NUM("cloud", "boundary", 1, "62", 0, 1e6, 0, "m", "thickness h of the noisy boundary", S(boundary_m)),
+    NUM("cloud", "noise_scale", 1, "1", 0, 1e4, 1, "",
+        "1: one 64^3 noise tile spans 1000 m (the 8x layer repeats every 125 m)", S(noise_scale)),
+    ENUM("cloud", "phase", phase_names, "mie", "phase function: mie (data/mie_cloud.tbl), hg or cornette-shanks",
+         S(phase)),
+    NUM("cloud", "g", 1, "0.86", -0.99, 0.99, 0, "", "asymmetry of hg and cornette-shanks", S(phase_g)),
+    ENUM("cloud", "profile", profile_names, "tapered",
+         "density profile: tapered noise, or kol (Kol eq. 3.1 as printed)", S(profile)),
+    INT("quality", "segments", 1, "5", 1, 64, 0, "", "march segments per ellipsoid crossed", S(segments)),
+    NUM("quality", "segment_ratio", 1, "1.6", 1, 10, 0, "", "ratio of consecutive segment lengths (1: uniform)",
+        S(segment_ratio)),
+    INT("quality", "hull_tessellation", 1, "10", 3, 64, 0, "",
+        "latitude bands of the hull mesh (twice as many longitudes)", S(hull_tessellation)),
+    INT("quality", "max_intervals", 1, "6", 1, CU_MAX_INTERVALS, 0, "",
+        "in-cloud intervals composited per pixel (Kol: 6)", S(max_intervals)),
+    BOOL("quality", "noise", "on", "fractal noise in the boundary", S(noise)),
+    INT("quality", "noise_octaves", 1, "5", 1, 5, 0, "", "noise mip levels summed (Kol eq. 3.74 uses 5)",
+        S(noise_octaves)),
+    INT("quality", "sun_map_size", 1, "128", 16, 4096, 0, "texels",
+        "sun maps (opacity map, or front and back depth) per side", S(sun_map_size)),
+    ENUM("quality", "integration", integration_names, "exponential",
+         "segment integration: exponential (energy-conserving) or kol (Kol's trapezoids, eq. 3.20)", S(integration)),
+    ENUM("quality", "preset", preset_names, "high",
+         "the sweep's presets (src/core/presets.c; high: the defaults); keys set in the file or by --set win",
+         S(preset)),
+    ENUM("light", "shadow", shadow_names, "peel",
+         "sun transmittance: peel (opacity map of the cloud's intervals), front (Kol), osm (opacity shadow maps) or "
+         "fom (Fourier opacity maps)",
+         S(shadow)),
+    INT("light", "sun_intervals", 1, "3", 1, 4, 0, "", "most in-cloud intervals per sun ray the opacity map stores",
+        S(sun_intervals)),
+    INT("light", "sun_samples", 1, "32", 4, 64, 4, "", "trapezoids per interval in the opacity pass", S(sun_samples)),
+    ENUM("light", "sun_filter", filter_names, "bilinear", "lookup of the opacity map: nearest or bilinear",
+         S(sun_filter)),
+    INT("light", "osm_slices", 1, "16", 4, 64, 4, "", "shadow = osm: opacity slices along the sun", S(osm_slices)),
+    INT("light", "fom_coefficients", 1, "8", 1, 16, 0, "", "shadow = fom: Fourier terms", S(fom_coefficients)),
+    ENUM("ms", "mode", ms_names, "slab",
+         "multiple scattering: slab (Bouthors' model, Kol's fixed blur), collector (Bouthors' iterative collector "
+         "search), octaves (Wrenninge) or none",
+         S(ms_mode)),
+    INT("ms", "octaves", 1, "4", 1, 8, 0, "", "mode = octaves: Wrenninge's octave count", S(ms_octaves)),
+    NUM("ms", "a", 1, "0.5", 0, 1, 0, "", "mode = octaves: extinction factor per octave", S(ms_a)),
+    NUM("ms", "b", 1, "0.5", 0, 1, 0, "", "mode = octaves: scattering factor per octave", S(ms_b)),
+    NUM("ms", "c", 1, "0.5", 0, 1, 0, "", "mode = octaves: anisotropy factor per octave", S(ms_c)),
+    BOOL("ms", "sky_light", "on",
+         "sky and ground light; with slab or collector and a Preetham sky, sky and ground told apart by the slab "
+         "model",
+         S(sky_light)),
+    NUM("ms", "blur", 1, "200", 0, 1e6, 1, "m",
+        "mode = slab: width over which the slab maps are averaged around a point (Kol's fixed LOD)", S(ms_blur_m)),
+    INT("ms", "iterations", 1, "10", 1, 32, 0, "", "mode = collector: most search steps (Bouthors eqs. 3.59-3.63)",
+        S(ms_iterations)),
+    BOOL("ms", "closure", "on",
+         "slab and collector modes: scale multiple scattering so the clouds send out no more light than they "
+         "intercept (the energy closure)",
+         S(ms_closure)),
+};
+
+const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT] = {
+    NUM("ellipsoid", "center", 3, NULL, -1e7, 1e7, 0, "m", "centre, world coordinates (required)", E(center)),
+    NUM("ellipsoid", "radii", 3, NULL, 0, 1e6, 1, "m", "semi-axes along world x, y, z (required)", E(radii)),
+};
+#undef S
+#undef E
+
+const cu_scene_section cu_scene_sections[CU_SCENE_SECTION_COUNT] = {
+    {"output", 0, 0, "the image"},
+    {"camera", 1, 0, "a pinhole camera"},
+    {"sun", 1, 0, "the sun and the Preetham atmosphere"},
+    {"sky", 0, 0, "the light from the sky and the ground"},
+    {"cloud", 1, 0, "the droplets and the density field of every ellipsoid"},
+    {"ellipsoid", 1, 1, "one ellipsoid of the cloud; repeat the section for each, up to 64"},
+    {"quality", 0, 0, "speed against accuracy of the real-time renderer"},
+    {"light", 0, 0, "the sun's transmittance through the cloud"},
+    {"ms", 0, 0, "multiple scattering"},
+};
+
+/* Counts in the header match the tables; explicit and seen flags fit (scene.h). */
+typedef char key_count_ok[sizeof cu_scene_keys / sizeof cu_scene_keys[0] == CU_SCENE_KEY_COUNT ? 1 : -1];
+typedef char ell_count_ok[sizeof cu_ellipsoid_keys / sizeof cu_ellipsoid_keys[0] == CU_ELLIPSOID_KEY_COUNT ? 1 : -1];
+typedef char keys_fit_flags[CU_SCENE_KEY_COUNT <= sizeof(((cu_scene *)0)->explicit_key) ? 1 : -1];
+typedef char name_first[offsetof(cu_scene, name) == 0 ? 1 : -1]; /* cu_scene_key.given == 0 means none */
+
+const cu_scene_section *cu_scene_section_find(const char *name)
+{
+    for (int i = 0; i < CU_SCENE_SECTION_COUNT; i++)
+        if (strcmp(cu_scene_sections[i].name, name) == 0)
+            return &cu_scene_sections[i];
+    return NULL;
+}
+
+const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n)
+{
+    *n = sec->repeated ? CU_ELLIPSOID_KEY_COUNT : CU_SCENE_KEY_COUNT;
+    return sec->repeated ? cu_ellipsoid_keys : cu_scene_keys;
+}
+
+const cu_scene_key *cu_scene_key_find(const char *section, const char *name)
+{
+    const cu_scene_section *sec = cu_scene_section_find(section);
+    if (!sec)
+        return NULL;
+    int n;
+    const cu_scene_key *keys = cu_scene_section_keys(sec, &n);
+    for (int i = 0; i < n; i++)
+        if (strcmp(keys[i].section, section) == 0 && strcmp(keys[i].name, name) == 0)
+            return &keys[i];
+    return NULL;
+}
+
+static int clip40(int n)
+{
+    return n > 40 ? 40 : n;
+}
+
+int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const char *at, cu_error *err)
+{
+    if (k->values) {
+        for (int i = 0; k->values[i]; i++)
+            if (strcmp(text, k->values[i]) == 0) {
+                *(int *)dst = i;
+                return 0;
+            }
+        char choices[200] = "";
+        for (int i = 0; k->values[i]; i++) {
+            strncat(choices, i ? " | " : "", sizeof choices - strlen(choices) - 1);
+            strncat(choices, k->values[i], sizeof choices - strlen(choices) - 1);
+        }
+        return cu_fail(err, "%s: '%s' must be one of %s, got '%.40s'", at, k->name, choices, text);
+    }
+    double vals[4];
+    int n = 0;
+    const char *p = text;
+    while (*p) {
+        while (*p == ' ' || *p == '\t' || *p == ',')
+            p++;
+        if (!*p)
+            break;
+        if (n == k->count)
+            return cu_fail(err, "%s: '%s' needs %d number%s, got more", at, k->name, k->count, k->count > 1 ? "s" : "");
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || (*end && *end != ' ' && *end != '\t' && *end != ','))
+            return cu_fail(err, "%s: '%s' expects a number, got '%.*s'", at, k->name, clip40((int)strcspn(p, " \t,")), p);
+        if (isnan(v))
+            return cu_fail(err, "%s: '%s' is NaN", at, k->name);
+        if (isinf(v) || errno == ERANGE) {
+            if (isinf(v) || fabs(v) > 1.0)
+                return cu_fail(err, "%s: '%s' is out of range (%.*s)", at, k->name, clip40((int)(end - p)), p);
+            v = 0.0; /* underflow to zero is harmless */
+        }
+        if (k->type == CU_KEY_INTEGER && v != floor(v))
+            return cu_fail(err, "%s: '%s' must be a whole number, got %g", at, k->name, v);
+        vals[n++] = v;
+        p = end;
+    }
+    if (n != k->count)
+        return cu_fail(err, "%s: '%s' needs %d number%s, got %d", at, k->name, k->count, k->count > 1 ? "s" : "", n);
+    for (int i = 0; i < n; i++) {
+        double v = vals[i];
+        int bad = k->lo_open ? !(v > k->lo) : !(v >= k->lo);
+        if (bad || v > k->hi) {
+            if (k->lo_open && k->lo == 0 && v <= 0)
+                return cu_fail(err, "%s: '%s' must be positive, got %g", at, k->name, v);
+            return cu_fail(err, "%s: '%s' must be in [%g, %g]%s%s, got %g", at, k->name, k->lo, k->hi,
+                           k->unit[0] ? " " : "", k->unit, v);
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        if (k->type == CU_KEY_INTEGER)
+            ((int *)dst)[i] = (int)vals[i];
+        else
+            ((double *)dst)[i] = vals[i];
+    }
+    return 0;
+}
+
+void cu_scene_keys_defaults(void *base, const cu_scene_key *keys, int n)
+{
+    /* The defaults are checked by tests/core/test_keys.c, so this cannot fail. */
+    for (int i = 0; i < n; i++)
+        if (keys[i].def)
+            cu_scene_key_parse(&keys[i], (char *)base + keys[i].offset, keys[i].def, "default", NULL);
+}

@@ -1,0 +1,63 @@
+/* src/core/scene_keys.h: the one table of scene keys (name, type, default, range, unit, doc, where it is stored) that
+ * the parser, the defaults, the preset check and the documentation (build/cumulo-keys) all read. */
+#ifndef CU_SCENE_KEYS_H
+#define CU_SCENE_KEYS_H
+#include "scene.h"
+#include <stddef.h>
+
+typedef enum cu_key_type {
+    CU_KEY_NUMBER,  /* double */
+    CU_KEY_INTEGER, /* int, a whole number */
+    CU_KEY_ENUM,    /* int: the index of the value's name in values */
+    CU_KEY_BOOL,    /* int 0/1, written as values[0] / values[1] (off / on) */
+} cu_key_type;
+
+typedef struct cu_scene_key {
+    const char *section, *name;
+    cu_key_type type;
+    int count;                 /* numbers in the value: 1, 2 (output.size: width height) or 3 (a vector, RGB) */
+    const char *const *values; /* CU_KEY_ENUM, CU_KEY_BOOL: the names, NULL-terminated */
+    const char *def;           /* default in the file's syntax; NULL: none (a required key, or see doc) */
+    double lo, hi;             /* numbers: legal range, inclusive */
+    int lo_open;               /* 1: lo itself is excluded (the value must be > lo) */
+    int multiple;              /* CU_KEY_INTEGER: the value must be a multiple of this (0: any) */
+    const char *unit;          /* "" when the value has none */
+    const char *doc;           /* one line of plain text */
+    size_t offset;             /* where the value lives: offsetof(cu_scene, ...), or offsetof(cu_ellipsoid, ...) for
+                                  keys of a repeated section */
+    size_t given;              /* offsetof an int of cu_scene set to 1 when the file or --set gives the key; 0: none
+                                  (offset 0 is cu_scene.name, never such a flag) */
+} cu_scene_key;
+
+typedef struct cu_scene_section {
+    const char *name;
+    int required; /* the file must have it */
+    int repeated; /* may appear many times (at most CU_MAX_ELLIPSOIDS), each one a cu_ellipsoid; its keys are
+                     cu_ellipsoid_keys */
+    const char *doc;
+} cu_scene_section;
+
+/* Counts are part of the declarations so that other files can size arrays by them; scene_keys.c checks them. */
+#define CU_SCENE_KEY_COUNT 43
+#define CU_ELLIPSOID_KEY_COUNT 2
+#define CU_SCENE_SECTION_COUNT 9
+
+extern const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT];         /* offsets into cu_scene */
+extern const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT]; /* offsets into cu_ellipsoid */
+extern const cu_scene_section cu_scene_sections[CU_SCENE_SECTION_COUNT]; /* in the order the docs list them */
+
+/* The section called name, or NULL. */
+const cu_scene_section *cu_scene_section_find(const char *name);
+/* The key name of section (in cu_ellipsoid_keys for a repeated section), or NULL. */
+const cu_scene_key *cu_scene_key_find(const char *section, const char *name);
+/* The table holding the keys of section sec (cu_scene_keys or cu_ellipsoid_keys) and its length. */
+const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n);
+
+/* Parses the value text of key k (NUL-terminated, blanks trimmed) into dst, the key's field. On failure returns 1, leaves
+ * dst unchanged and fills err with a message that starts with at ("file:line:col", "--set ...") and names the key.
+ * The multiple-of rule is not checked here: the parser reports it once the whole file is read. */
+int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const char *at, cu_error *err);
+
+/* Writes the default of every key of keys[0..n-1] that has one into base (a cu_scene or a cu_ellipsoid). */
+void cu_scene_keys_defaults(void *base, const cu_scene_key *keys, int n);
+#endif
