@@ -1,5 +1,5 @@
-/* src/core/scene.h: the scene description (camera, sun, cloud, ellipsoids, quality knobs); its keys, defaults and
- * ranges are the table in scene_keys.c. */
+/* src/core/scene.h: the scene description (camera, sun, cloud, ellipsoids, quality knobs), filled by the parser
+ * (scene_parse.c) through the key table (scene_keys.c), which holds every key's default and range. */
 #ifndef CU_SCENE_H
 #define CU_SCENE_H
 #include "cumulo.h"

@@ -1,4 +1,4 @@
-/* src/core/scene.c: parses INI-style scene files and --set overrides into a cu_scene through the key table
+/* src/core/scene_parse.c: parses INI-style scene files and --set overrides into a cu_scene through the key table
  * (scene_keys.c), rejecting bad input with file:line:column messages that name the field. */
 #include "scene.h"
 #include "error.h"
