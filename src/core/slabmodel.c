@@ -40,8 +40,8 @@ static int ascending(const double *v, int n)
 /* The largest value of each (group, thickness) fit over the cells the simulator sampled (depths j t / 10, the
  * angle nodes, azimuths 0..180 every 45 deg), leaving out the structural zeros the fitter leaves out too (no diffuse
  * light going down at d = 0 or up at d = t). Between and beyond those cells eq. 3.32 is unconstrained and its
- * parameters can make it spike (measured: 1e3 sr^-1 for order 4 at d = 0 looking up, 26 sr^-1 for order 3 between
- * depth nodes, against data below 0.3); log_bound = log(2 x that maximum) caps it. */
+ * parameters can make it spike far above any simulated value (sizes in tools/slab/README.md, "How the renderer uses
+ * the fit"); log_bound = log(2 x that maximum) caps it. */
 static double node_value(const cu_slab_model *m, int g, int k, int iv, int il, double d, double log_p);
 static void bound_groups(cu_slab_model *m)
 {
@@ -80,10 +80,10 @@ static double hg(double g, double mu)
  * multiply scattered flux is 1 - e^(-tau/mu0) - (R1 + T1), single scattering by its closed forms, for the transport
  * the tables were simulated with (tr: HG, or a chopped Mie table as delta-M: tau' = (1 - f) tau, g' = (g - f)/(1 - f),
  * single scattering approximated by HG(g')). The fitted orders
- * 2..16+, integrated over the hemispheres at d = 0 (up) and d = t (down), give more than that for thick slabs
- * (measured: +3 % at 500 m, +9 % at 1000 m, sun overhead) and less for thin ones (-5 % at 50 and 200 m). Where
- * they give more, kappa scales them down to the flux available; where less, they are left alone (kappa <= 1: the
- * model is capped, never inflated). */
+ * 2..16+, integrated over the hemispheres at d = 0 (up) and d = t (down), give more than that for thick slabs and
+ * less for thin ones (by how much: tools/slab/README.md, "How the renderer uses the fit"). Where they give more,
+ * kappa scales them down to the flux available; where less, they are left alone (kappa <= 1: the model is capped,
+ * never inflated). */
 static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
 {
     enum { NV = 36, NP = 24 };
@@ -306,8 +306,8 @@ static int bracket(const double *v, int n, double x, double *w)
 }
 
 /* Eq. 3.32 at one (thV, thL) node pair, without the cos thL factor, given log P*. Evaluated in log space: the fit
- * leaves compensating parameters (A1* up to 5e53 against a tiny log^2 ratio) that overflow fp32 in the shader. The
- * log^2 guards are the fitter's (tools/slab). */
+ * can leave compensating parameters (a huge A1* against a tiny log^2 ratio) whose product overflows fp32 in the
+ * shader, so the texture holds log A1*, log A2*, log P*. The log^2 guards are the fitter's (tools/slab). */
 static double node_value(const cu_slab_model *m, int g, int k, int iv, int il, double d, double log_p)
 {
     double B = m->b1[g][k][iv] - m->b2[g][k][il];

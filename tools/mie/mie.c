@@ -89,7 +89,7 @@ int mie_solve(double complex m, double x, mie_work *w, mie_q *q)
     int nterms = mie_nterms(x);
     /* D_n(mx) is unstable upward when Im(m)x is large, so it is recurred downward (Wiscombe 1980, sec. 4)
      * from a start value given exactly by Lentz's continued fraction. Starting from D = 0 instead (BHMIE)
-     * leaves errors of 1e-5 in Q_ext at x = 100, m = 1.33, because the recurrence damps the wrong start
+     * leaves errors in Q_ext at large x (tools/mie/README.md), because the recurrence damps the wrong start
      * only slowly while n < |mx|. */
     int nmx = nterms + 1;
     if (grow(w, nterms, nmx) != 0)
