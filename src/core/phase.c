@@ -62,7 +62,9 @@ int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
             }
             int bad = read_numbers(&f, f.tok, f.ntok, v, 4, row_names, err);
             if (bad) {
-                rc = bad == 2 ? 1 : cu_fail(err, "%s:%d: angle row needs 4 finite numbers: theta_deg P_r P_g P_b", path, ln);
+                if (bad == 1)
+                    cu_fail(err, "%s:%d: angle row needs 4 finite numbers: theta_deg P_r P_g P_b", path, ln);
+                rc = 1;
                 break;
             }
             if (v[0] < 0 || v[0] > 180 || (got > 0 && v[0] <= th[got - 1]) || (got == 0 && v[0] != 0) ||
@@ -76,54 +78,60 @@ int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
             got++;
             continue;
         }
-        const char *key = f.tok[0];
-        const char *const names[3] = {key, key, key};
-        char *const *rest = f.tok + 1;
-        int nrest = f.ntok - 1;
+        /* header keys: how many numbers each takes, and the message when they are missing or out of range */
+        enum { K_CHANNELS, K_LAMBDA, K_SIGMA, K_G, K_CHOP, K_F, K_ANGLES, K_COUNT };
+        static const struct { const char *name; int n; const char *need; } keys[K_COUNT] = {
+            {"channels", 1, "'channels' must be 3"},
+            {"lambda_nm", 3, "'lambda_nm' needs 3 numbers"},
+            {"sigma_ext_um2", 3, "'sigma_ext_um2' needs 3 positive numbers"},
+            {"g", 3, "'g' needs 3 numbers"},
+            {"chop_deg", 1, "'chop_deg' must be in (0, 90)"},
+            {"f", 3, "'f' needs 3 numbers"},
+            {"angles", 1, "'angles' must be a count from 2 to 1000000"},
+        };
+        int k = 0;
+        while (k < K_COUNT && strcmp(f.tok[0], keys[k].name) != 0)
+            k++;
+        if (k == K_COUNT) {
+            rc = cu_fail(err, "%s:%d: unknown key '%.31s'", path, ln, f.tok[0]);
+            break;
+        }
+        const char *const names[3] = {keys[k].name, keys[k].name, keys[k].name};
         double v[3];
-        int bad;
-#define NUMBERS(dst, n) ((bad = read_numbers(&f, rest, nrest, dst, n, names, err)) != 0)
-#define FAIL(what) (rc = bad == 2 ? 1 : cu_fail(err, "%s:%d: %s", path, ln, what))
-        if (strcmp(key, "channels") == 0) {
-            if (NUMBERS(v, 1) || v[0] != 3) { FAIL("'channels' must be 3"); break; }
-        } else if (strcmp(key, "lambda_nm") == 0) {
-            if (NUMBERS(lam, 3)) { FAIL("'lambda_nm' needs 3 numbers"); break; }
-            have |= 1;
-        } else if (strcmp(key, "sigma_ext_um2") == 0) {
-            if (NUMBERS(v, 3) || v[0] <= 0 || v[1] <= 0 || v[2] <= 0) {
-                FAIL("'sigma_ext_um2' needs 3 positive numbers");
-                break;
+        int bad = read_numbers(&f, f.tok + 1, f.ntok - 1, v, keys[k].n, names, err);
+        if (!bad)
+            switch (k) {
+            case K_CHANNELS: bad = v[0] != 3; break;
+            case K_SIGMA: bad = v[0] <= 0 || v[1] <= 0 || v[2] <= 0; break;
+            case K_CHOP: bad = v[0] <= 0 || v[0] >= 90; break;
+            case K_ANGLES: bad = v[0] < 2 || v[0] > 1e6 || v[0] != floor(v[0]); break;
+            default: break;
             }
-            memcpy(t->sigma_ext_um2, v, sizeof v);
-            have |= 2;
-        } else if (strcmp(key, "g") == 0) {
-            if (NUMBERS(v, 3)) { FAIL("'g' needs 3 numbers"); break; }
-            have |= 4;
-        } else if (strcmp(key, "chop_deg") == 0) {
-            if (NUMBERS(v, 1) || v[0] <= 0 || v[0] >= 90) { FAIL("'chop_deg' must be in (0, 90)"); break; }
-            chop = v[0];
-        } else if (strcmp(key, "f") == 0) {
-            if (NUMBERS(v, 3)) { FAIL("'f' needs 3 numbers"); break; }
-            have |= 8;
-        } else if (strcmp(key, "angles") == 0) {
-            if (NUMBERS(v, 1) || v[0] < 2 || v[0] > 1e6 || v[0] != floor(v[0])) {
-                FAIL("'angles' must be a count from 2 to 1000000");
-                break;
-            }
+        if (bad) {
+            rc = bad == 2 ? 1 : cu_fail(err, "%s:%d: %s", path, ln, keys[k].need);
+            break;
+        }
+        switch (k) {
+        case K_LAMBDA: memcpy(lam, v, sizeof v); have |= 1; break;
+        case K_SIGMA: memcpy(t->sigma_ext_um2, v, sizeof v); have |= 2; break;
+        case K_G: have |= 4; break;
+        case K_CHOP: chop = v[0]; break;
+        case K_F: have |= 8; break;
+        case K_ANGLES:
             nang = (int)v[0];
             th = malloc(sizeof(double) * (size_t)nang);
             pv = malloc(sizeof(double) * 3 * (size_t)nang);
-            if (!th || !pv) { rc = cu_fail(err, "%s:%d: out of memory", path, ln); break; }
-        } else {
-            rc = cu_fail(err, "%s:%d: unknown key '%.31s'", path, ln, key);
+            if (!th || !pv)
+                rc = cu_fail(err, "%s:%d: out of memory", path, ln);
+            break;
+        default: break;
         }
-#undef NUMBERS
-#undef FAIL
     }
     int ln = f.line;
     cu_textfile_close(&f);
     if (!rc && (have != 15 || chop < 0 || nang < 0))
-        rc = cu_fail(err, "%s:%d: incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles", path, ln);
+        rc = cu_fail(err, "%s:%d: incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles", path,
+                     ln);
     if (!rc && got != nang)
         rc = cu_fail(err, "%s:%d: fewer angle rows than 'angles' says (truncated file?)", path, ln);
     if (!rc && th[nang - 1] != 180)

@@ -52,7 +52,8 @@ static void fail(const char *fmt, ...)
 static void usage(void)
 {
     printf("usage: cumulo-slab (--tau T | --thickness METRES [--ke PER_METRE]) [options]\n"
-           "Monte Carlo transport in a non-absorbing plane-parallel slab lit by a collimated sun at cos(theta_L) = mu0.\n"
+           "Monte Carlo transport in a non-absorbing plane-parallel slab lit by a collimated sun at\n"
+           "cos(theta_L) = mu0.\n"
            "See tools/slab/README.md for the geometry, the estimators and the output formats.\n"
            "options:\n"
            "  --tau T              optical thickness, (0, 1e4]\n"
