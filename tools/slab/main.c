@@ -24,29 +24,30 @@ static void finish(int code)
     exit(code);
 }
 
-/* A usage error: one line naming the option, exit status 2. */
+/* One line on stderr, then exit: 2 for a usage error (the line names the option), 1 for a run that failed with good
+ * arguments (a table that cannot be read, an output that cannot be written, memory). */
+static void quit(int code, const char *fmt, va_list ap)
+{
+    fprintf(stderr, "cumulo-slab: error: ");
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "%s\n", code == 2 ? " (see --help)" : "");
+    finish(code);
+}
+
 static void die(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "cumulo-slab: error: ");
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, " (see --help)\n");
+    quit(2, fmt, ap);
     va_end(ap);
-    finish(2);
 }
 
-/* A failure of a run whose arguments were fine (a table that cannot be read, an output that cannot be written,
- * memory): exit status 1. */
 static void fail(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "cumulo-slab: error: ");
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\n");
+    quit(1, fmt, ap);
     va_end(ap);
-    finish(1);
 }
 
 static void usage(void)
