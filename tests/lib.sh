@@ -16,3 +16,18 @@ t_summary() {
   [ "$T_FAIL" -eq 0 ] || echo "[  FAILED  ] $T_FAIL test(s)."
   [ "$T_FAIL" -eq 0 ]
 }
+# t_help_version PROGRAM BIN OPTION...: `BIN --help` exits 0 with the usage on stdout (nothing on stderr) naming every
+# OPTION, and `BIN --version` exits 0 printing "PROGRAM VERSION (git describe)" with the tree's VERSION.
+t_help_version() {
+  _p=$1; _b=$2; shift 2
+  _out=$("$_b" --help 2>"${TMPDIR:-/tmp}/t_help_err.$$"); _got=$?; _err=$(cat "${TMPDIR:-/tmp}/t_help_err.$$")
+  rm -f "${TMPDIR:-/tmp}/t_help_err.$$"
+  _miss=
+  for _o in "$@"; do case "$_out" in *"$_o"*) ;; *) _miss="$_miss $_o" ;; esac; done
+  if [ "$_got" -eq 0 ] && [ -z "$_err" ] && [ -z "$_miss" ] && case "$_out" in "usage: $_p"*) true ;; *) false ;; esac
+  then t_ok "$_p --help"; else t_fail "$_p --help" "exit $_got, stderr '$_err', options not described:$_miss"; fi
+  _out=$("$_b" --version 2>&1); _got=$?
+  case "$_out" in "$_p $(cat VERSION) ("*")") [ "$_got" -eq 0 ] && t_ok "$_p --version" ||
+                                                 t_fail "$_p --version" "exit $_got" ;;
+    *) t_fail "$_p --version" "got '$_out' (exit $_got)" ;; esac
+}

@@ -1,16 +1,11 @@
-/* src/collector.c: strict loader and texture packing of the collector table (see collector.h). */
+/* src/core/collector.c: strict loader and texture packing of the collector table (see collector.h). */
 #include "collector.h"
-#include <errno.h>
+#include "error.h"
+#include "textfile.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int cfail(cu_error *err, const char *path, int line, const char *what)
-{
-    snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, line, what);
-    return 1;
-}
 
 /* Inserts x into the ascending list v (n entries, at most max) unless present; -1 when full. */
 static int add_node(double *v, int *n, int max, double x)
@@ -41,110 +36,97 @@ typedef struct { double v[9]; int line; } row;
 int cu_collector_load(cu_collector *c, const char *path, cu_error *err)
 {
     memset(c, 0, sizeof *c);
-    FILE *fp = fopen(path, "r");
-    if (!fp) {
-        snprintf(err->msg, sizeof err->msg, "%s: cannot open the collector table: %s (scripts/collector_table.sh "
-                 "makes it)", path, strerror(errno));
+    cu_textfile f;
+    if (cu_textfile_open(&f, path, "the collector table", "scripts/collector_table.sh makes it", err))
         return 1;
-    }
     size_t cap = 1 << 14, n = 0;
     row *rows = malloc(cap * sizeof *rows);
     unsigned char *seen = NULL;
-    char line[512];
-    int ln = 0, rc = 1;
+    int rc = 1, r;
     static const char *const names[9] = {"t_m", "thetaL", "d_m", "thetaV", "phiV", "C_ms", "cx_m", "cz_m", "sigma_m"};
-    while (rows && fgets(line, sizeof line, fp)) {
-        ln++;
-        size_t len = strlen(line);
-        if (len == 0 || (line[len - 1] != '\n' && !feof(fp))) {
-            cfail(err, path, ln, len == sizeof line - 1 ? "line too long" : "NUL byte in the line");
+    while (rows && (r = cu_textfile_next(&f, err)) != 0) {
+        int ln = f.line;
+        if (r < 0)
             goto out;
-        }
-        char *p = line;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (*p == '#' || *p == '\n' || *p == 0)
-            continue;
-        row r = {.line = ln};
+        row rw = {.line = ln};
         for (int k = 0; k < 9; k++) {
-            char *end;
-            errno = 0;
-            r.v[k] = strtod(p, &end);
-            if (end == p || errno == ERANGE || !isfinite(r.v[k])) {
-                char what[80];
-                snprintf(what, sizeof what, "field '%s': expected a finite number", names[k]);
-                cfail(err, path, ln, what);
+            cu_num_status s = k < f.ntok ? cu_text_number(f.tok[k], &rw.v[k]) : CU_NUM_BAD;
+            if (s == CU_NUM_NOT_FLOAT) {
+                cu_text_fail_float(&f, err, names[k], f.tok[k]);
                 goto out;
             }
-            p = end;
+            if (s != CU_NUM_OK) {
+                cu_fail(err, "%s:%d: field '%s': expected a finite number", path, ln, names[k]);
+                goto out;
+            }
         }
-        while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n')
-            p++;
-        if (*p) {
-            cfail(err, path, ln, "more than 9 fields");
+        if (f.ntok > 9) {
+            cu_fail(err, "%s:%d: more than 9 fields", path, ln);
             goto out;
         }
-        if (r.v[0] <= 0 || r.v[1] < 0 || r.v[1] > 90 || r.v[3] < 0 || r.v[3] > 180 || r.v[4] < 0 || r.v[4] > 180 ||
-            r.v[2] < 0 || r.v[2] > r.v[0] * (1 + 1e-9) || r.v[8] < 0) {
-            cfail(err, path, ln, "value out of range (t > 0, 0 <= d <= t, angles in degrees, sigma >= 0)");
+        const double *v = rw.v;
+        if (v[0] <= 0 || v[1] < 0 || v[1] > 90 || v[3] < 0 || v[3] > 180 || v[4] < 0 || v[4] > 180 || v[2] < 0 ||
+            v[2] > v[0] * (1 + 1e-9) || v[8] < 0) {
+            cu_fail(err, "%s:%d: value out of range (t > 0, 0 <= d <= t, angles in degrees, sigma >= 0)", path, ln);
             goto out;
         }
         if (n == cap) {
             row *nr = realloc(rows, 2 * cap * sizeof *rows);
             if (!nr) {
-                cfail(err, path, ln, "out of memory");
+                cu_fail(err, "%s:%d: out of memory", path, ln);
                 goto out;
             }
             rows = nr;
             cap *= 2;
         }
-        rows[n++] = r;
-        if (add_node(c->t, &c->nt, CU_COLL_MAX_T, r.v[0]) || add_node(c->thl, &c->nl, CU_COLL_MAX_L, r.v[1]) ||
-            add_node(c->thv, &c->nv, CU_COLL_MAX_V, r.v[3]) || add_node(c->phi, &c->np, CU_COLL_MAX_P, r.v[4])) {
-            cfail(err, path, ln, "too many distinct nodes for the grid");
+        rows[n++] = rw;
+        if (add_node(c->t, &c->nt, CU_COLL_MAX_T, v[0]) || add_node(c->thl, &c->nl, CU_COLL_MAX_L, v[1]) ||
+            add_node(c->thv, &c->nv, CU_COLL_MAX_V, v[3]) || add_node(c->phi, &c->np, CU_COLL_MAX_P, v[4])) {
+            cu_fail(err, "%s:%d: too many distinct nodes for the grid", path, ln);
             goto out;
         }
     }
+    int ln = f.line;
     if (!rows) {
-        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        cu_fail(err, "%s: out of memory", path);
         goto out;
     }
     size_t cells = (size_t)c->nt * c->nl * CU_COLL_ND * c->nv * c->np;
     if (n == 0 || n != cells || c->nv < 2) {
-        snprintf(err->msg, sizeof err->msg, "%s:%d: %zu rows for a grid of %d x %d x %d x %d x %d = %zu cells", path,
-                 ln, n, c->nt, c->nl, CU_COLL_ND, c->nv, c->np, cells);
+        cu_fail(err, "%s:%d: %zu rows for a grid of %d x %d x %d x %d x %d = %zu cells", path, ln, n, c->nt, c->nl,
+                CU_COLL_ND, c->nv, c->np, cells);
         goto out;
     }
     c->cell = malloc(sizeof(float) * 3 * cells);
     seen = calloc(cells, 1);
     if (!c->cell || !seen) {
-        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        cu_fail(err, "%s: out of memory", path);
         goto out;
     }
     for (size_t i = 0; i < n; i++) {
-        const row *r = &rows[i];
-        int it = find_node(c->t, c->nt, r->v[0]), il = find_node(c->thl, c->nl, r->v[1]);
-        int iv = find_node(c->thv, c->nv, r->v[3]), ip = find_node(c->phi, c->np, r->v[4]);
-        double jd = r->v[2] / r->v[0] * 10;
+        const row *q = &rows[i];
+        int it = find_node(c->t, c->nt, q->v[0]), il = find_node(c->thl, c->nl, q->v[1]);
+        int iv = find_node(c->thv, c->nv, q->v[3]), ip = find_node(c->phi, c->np, q->v[4]);
+        double jd = q->v[2] / q->v[0] * 10;
         int j = (int)(jd + 0.5);
         if (fabs(jd - j) > 1e-6) {
-            cfail(err, path, r->line, "field 'd_m': depths must be j t / 10");
+            cu_fail(err, "%s:%d: field 'd_m': depths must be j t / 10", path, q->line);
             goto out;
         }
         size_t idx = ((((size_t)it * c->nl + il) * CU_COLL_ND + j) * c->nv + iv) * c->np + ip;
         if (seen[idx]++) {
-            cfail(err, path, r->line, "duplicate cell");
+            cu_fail(err, "%s:%d: duplicate cell", path, q->line);
             goto out;
         }
-        c->cell[3 * idx] = (float)r->v[6];
-        c->cell[3 * idx + 1] = (float)r->v[7];
-        c->cell[3 * idx + 2] = (float)r->v[8];
+        c->cell[3 * idx] = (float)q->v[6];
+        c->cell[3 * idx + 1] = (float)q->v[7];
+        c->cell[3 * idx + 2] = (float)q->v[8];
     }
     rc = 0;
 out:
     free(seen);
     free(rows);
-    fclose(fp);
+    cu_textfile_close(&f);
     if (rc)
         cu_collector_free(c);
     return rc;

@@ -1,7 +1,8 @@
-/* src/phase.c: analytic phase functions and the tables the shader samples (see phase.h). */
+/* src/core/phase.c: analytic phase functions and the tables the shader samples (see phase.h). */
 #include "phase.h"
+#include "error.h"
+#include "textfile.h"
 #include "vecmath.h"
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,71 +19,57 @@ double cu_phase_cornette_shanks(double g, double mu)
     return 3.0 * (1.0 - g * g) * (1.0 + mu * mu) / (8.0 * CU_PI * (2.0 + g * g) * d * sqrt(d));
 }
 
-static int tfail(cu_error *err, const char *path, int line, const char *what)
+/* Reads the n numbers of tokens tok[0..n-1] (ntok of them on the line) into v: 0 when there are exactly n and each is
+ * finite, 1 otherwise; a number that is finite but not in float range fails with its own message (names[i]) and 2. */
+static int read_numbers(const cu_textfile *f, char *const *tok, int ntok, double *v, int n, const char *const *names,
+                        cu_error *err)
 {
-    snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, line, what);
-    return 1;
-}
-
-/* Reads exactly n finite numbers from p; returns the count read or -1 on junk. */
-static int read_numbers(const char *p, double *v, int n)
-{
-    int k = 0;
-    for (;;) {
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (!*p || *p == '\n' || *p == '#')
-            return k;
-        if (k == n)
-            return -1;
-        char *end;
-        errno = 0;
-        v[k] = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(v[k]))
-            return -1;
-        k++;
-        p = end;
+    if (ntok != n)
+        return 1;
+    for (int i = 0; i < n; i++) {
+        cu_num_status s = cu_text_number(tok[i], &v[i]);
+        if (s == CU_NUM_NOT_FLOAT)
+            return 1 + cu_text_fail_float(f, err, names[i], tok[i]);
+        if (s != CU_NUM_OK)
+            return 1;
     }
+    return 0;
 }
 
 int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
 {
     memset(t, 0, sizeof *t);
-    FILE *fp = fopen(path, "r");
-    if (!fp) {
-        snprintf(err->msg, sizeof err->msg, "%s: cannot open the Mie table: %s (make it with build/cumulo-mie "
-                                            "--table %s)", path, strerror(errno), path);
+    char hint[1100];
+    snprintf(hint, sizeof hint, "make it with build/cumulo-mie --table %s", path);
+    cu_textfile f;
+    if (cu_textfile_open(&f, path, "the Mie table", hint, err))
         return 1;
-    }
-    char line[512];
-    int ln = 0, have = 0, nang = -1, got = 0;
+    static const char *const row_names[4] = {"theta_deg", "P_r", "P_g", "P_b"};
+    int have = 0, nang = -1, got = 0, rc = 0, r;
     double chop = -1, lam[3];
     double *th = NULL, *pv = NULL;
-    int rc = 0;
-    while (fgets(line, sizeof line, fp)) {
-        ln++;
-        if (!strchr(line, '\n') && !feof(fp)) {
-            rc = tfail(err, path, ln, "line too long");
+    while (!rc && (r = cu_textfile_next(&f, err)) != 0) {
+        if (r < 0) {
+            rc = 1;
             break;
         }
-        const char *p = line;
-        while (*p == ' ' || *p == '\t')
-            p++;
-        if (*p == '#' || *p == '\n' || !*p)
-            continue;
+        int ln = f.line;
         if (nang >= 0) { /* angle rows */
             double v[4];
             if (got >= nang) {
-                rc = tfail(err, path, ln, "more angle rows than 'angles' says");
+                rc = cu_fail(err, "%s:%d: more angle rows than 'angles' says", path, ln);
                 break;
             }
-            if (read_numbers(p, v, 4) != 4) {
-                rc = tfail(err, path, ln, "angle row needs 4 finite numbers: theta_deg P_r P_g P_b");
+            int bad = read_numbers(&f, f.tok, f.ntok, v, 4, row_names, err);
+            if (bad) {
+                if (bad == 1)
+                    cu_fail(err, "%s:%d: angle row needs 4 finite numbers: theta_deg P_r P_g P_b", path, ln);
+                rc = 1;
                 break;
             }
             if (v[0] < 0 || v[0] > 180 || (got > 0 && v[0] <= th[got - 1]) || (got == 0 && v[0] != 0) ||
                 v[1] < 0 || v[2] < 0 || v[3] < 0) {
-                rc = tfail(err, path, ln, "angles must rise from 0 to 180 degrees and P must be >= 0");
+                rc = cu_fail(err, "%s:%d: angles must rise from 0 to 180 degrees and P must be >= 0", path, ln);
                 break;
             }
             th[got] = v[0];
@@ -91,61 +78,64 @@ int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
             got++;
             continue;
         }
-        char key[32];
-        int klen = 0;
-        while (p[klen] && p[klen] != ' ' && p[klen] != '\t' && p[klen] != '\n' && klen < 31)
-            klen++;
-        memcpy(key, p, (size_t)klen);
-        key[klen] = 0;
-        const char *rest = p + klen;
+        /* header keys: how many numbers each takes, and the message when they are missing or out of range */
+        enum { K_CHANNELS, K_LAMBDA, K_SIGMA, K_G, K_CHOP, K_F, K_ANGLES, K_COUNT };
+        static const struct { const char *name; int n; const char *need; } keys[K_COUNT] = {
+            {"channels", 1, "'channels' must be 3"},
+            {"lambda_nm", 3, "'lambda_nm' needs 3 numbers"},
+            {"sigma_ext_um2", 3, "'sigma_ext_um2' needs 3 positive numbers"},
+            {"g", 3, "'g' needs 3 numbers"},
+            {"chop_deg", 1, "'chop_deg' must be in (0, 90)"},
+            {"f", 3, "'f' needs 3 numbers"},
+            {"angles", 1, "'angles' must be a count from 2 to 1000000"},
+        };
+        int k = 0;
+        while (k < K_COUNT && strcmp(f.tok[0], keys[k].name) != 0)
+            k++;
+        if (k == K_COUNT) {
+            rc = cu_fail(err, "%s:%d: unknown key '%.31s'", path, ln, f.tok[0]);
+            break;
+        }
+        const char *const names[3] = {keys[k].name, keys[k].name, keys[k].name};
         double v[3];
-        if (strcmp(key, "channels") == 0) {
-            if (read_numbers(rest, v, 1) != 1 || v[0] != 3) { rc = tfail(err, path, ln, "'channels' must be 3"); break; }
-        } else if (strcmp(key, "lambda_nm") == 0) {
-            if (read_numbers(rest, lam, 3) != 3) { rc = tfail(err, path, ln, "'lambda_nm' needs 3 numbers"); break; }
-            have |= 1;
-        } else if (strcmp(key, "sigma_ext_um2") == 0) {
-            if (read_numbers(rest, v, 3) != 3 || v[0] <= 0 || v[1] <= 0 || v[2] <= 0) {
-                rc = tfail(err, path, ln, "'sigma_ext_um2' needs 3 positive numbers");
-                break;
+        int bad = read_numbers(&f, f.tok + 1, f.ntok - 1, v, keys[k].n, names, err);
+        if (!bad)
+            switch (k) {
+            case K_CHANNELS: bad = v[0] != 3; break;
+            case K_SIGMA: bad = v[0] <= 0 || v[1] <= 0 || v[2] <= 0; break;
+            case K_CHOP: bad = v[0] <= 0 || v[0] >= 90; break;
+            case K_ANGLES: bad = v[0] < 2 || v[0] > 1e6 || v[0] != floor(v[0]); break;
+            default: break;
             }
-            memcpy(t->sigma_ext_um2, v, sizeof v);
-            have |= 2;
-        } else if (strcmp(key, "g") == 0) {
-            if (read_numbers(rest, v, 3) != 3) { rc = tfail(err, path, ln, "'g' needs 3 numbers"); break; }
-            have |= 4;
-        } else if (strcmp(key, "chop_deg") == 0) {
-            if (read_numbers(rest, v, 1) != 1 || v[0] <= 0 || v[0] >= 90) {
-                rc = tfail(err, path, ln, "'chop_deg' must be in (0, 90)");
-                break;
-            }
-            chop = v[0];
-        } else if (strcmp(key, "f") == 0) {
-            if (read_numbers(rest, v, 3) != 3) { rc = tfail(err, path, ln, "'f' needs 3 numbers"); break; }
-            have |= 8;
-        } else if (strcmp(key, "angles") == 0) {
-            if (read_numbers(rest, v, 1) != 1 || v[0] < 2 || v[0] > 1e6 || v[0] != floor(v[0])) {
-                rc = tfail(err, path, ln, "'angles' must be a count from 2 to 1000000");
-                break;
-            }
+        if (bad) {
+            rc = bad == 2 ? 1 : cu_fail(err, "%s:%d: %s", path, ln, keys[k].need);
+            break;
+        }
+        switch (k) {
+        case K_LAMBDA: memcpy(lam, v, sizeof v); have |= 1; break;
+        case K_SIGMA: memcpy(t->sigma_ext_um2, v, sizeof v); have |= 2; break;
+        case K_G: have |= 4; break;
+        case K_CHOP: chop = v[0]; break;
+        case K_F: have |= 8; break;
+        case K_ANGLES:
             nang = (int)v[0];
             th = malloc(sizeof(double) * (size_t)nang);
             pv = malloc(sizeof(double) * 3 * (size_t)nang);
-            if (!th || !pv) { rc = tfail(err, path, ln, "out of memory"); break; }
-        } else {
-            char msg[80];
-            snprintf(msg, sizeof msg, "unknown key '%.31s'", key);
-            rc = tfail(err, path, ln, msg);
+            if (!th || !pv)
+                rc = cu_fail(err, "%s:%d: out of memory", path, ln);
             break;
+        default: break;
         }
     }
-    fclose(fp);
+    int ln = f.line;
+    cu_textfile_close(&f);
     if (!rc && (have != 15 || chop < 0 || nang < 0))
-        rc = tfail(err, path, ln, "incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles");
+        rc = cu_fail(err, "%s:%d: incomplete table: needs lambda_nm, sigma_ext_um2, g, chop_deg, f and angles", path,
+                     ln);
     if (!rc && got != nang)
-        rc = tfail(err, path, ln, "fewer angle rows than 'angles' says (truncated file?)");
+        rc = cu_fail(err, "%s:%d: fewer angle rows than 'angles' says (truncated file?)", path, ln);
     if (!rc && th[nang - 1] != 180)
-        rc = tfail(err, path, ln, "the last angle row must be 180 degrees");
+        rc = cu_fail(err, "%s:%d: the last angle row must be 180 degrees", path, ln);
     if (rc) {
         free(th);
         free(pv);
@@ -160,8 +150,7 @@ int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
     if (!t->rgb || !t->peak || !full) {
         free(th); free(pv); free(full);
         cu_phase_table_free(t);
-        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
-        return 1;
+        return cu_fail(err, "%s: out of memory", path);
     }
     int j = 0;
     for (int i = 0; i < t->n; i++) {
@@ -211,8 +200,7 @@ int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_
     t->n = CU_PHASE_N;
     t->rgb = malloc(sizeof(float) * 3 * (size_t)t->n);
     if (!t->rgb) {
-        snprintf(err->msg, sizeof err->msg, "phase table: out of memory");
-        return 1;
+        return cu_fail(err, "phase table: out of memory");
     }
     for (int i = 0; i < t->n; i++) {
         double mu = cos(CU_PI * i / (t->n - 1));

@@ -1,9 +1,10 @@
-/* src/slabmodel.c: the fitted slab multiple-scattering tables (eq. 3.32): strict loader, CPU evaluation (the twin
+/* src/core/slabmodel.c: the fitted slab multiple-scattering tables (eq. 3.32): strict loader, CPU evaluation (the twin
  * of shaders_gles/ms_slab.glsl) and texture packing. */
 #include "slabmodel.h"
+#include "error.h"
 #include "phase.h"
+#include "textfile.h"
 #include "vecmath.h"
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,14 +16,6 @@ static const int group_min_order[CU_SLAB_GROUPS] = {1, 2, 3, 4, 5, 7, 10, 16};
 enum { F_P, F_A1, F_B1, F_C, F_D, F_A2, F_B2, F_COUNT };
 static const char *const field_names[F_COUNT] = {"P", "A1", "B1", "C", "D", "A2", "B2"};
 static const char *const node_keys[F_COUNT] = {"Theta", "thetaV", "thetaV", "thetaV", "thetaV", "thetaL", "thetaL"};
-
-static int lfail(cu_error *err, const char *path, int line, const char *fmt, const char *a)
-{
-    char what[200];
-    snprintf(what, sizeof what, fmt, a);
-    snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, line, what);
-    return 1;
-}
 
 /* Index of x in the ascending node list, appending it when new; -1 when the list is full. */
 static int node_index(double *nodes, int *n, int max, double x)
@@ -44,19 +37,11 @@ static int ascending(const double *v, int n)
     return 1;
 }
 
-static int parse_double(const char *s, double *v)
-{
-    char *end;
-    errno = 0;
-    *v = strtod(s, &end);
-    return end != s && *end == 0 && errno != ERANGE && isfinite(*v);
-}
-
 /* The largest value of each (group, thickness) fit over the cells the simulator sampled (depths j t / 10, the
  * angle nodes, azimuths 0..180 every 45 deg), leaving out the structural zeros the fitter leaves out too (no diffuse
  * light going down at d = 0 or up at d = t). Between and beyond those cells eq. 3.32 is unconstrained and its
- * parameters can make it spike (measured: 1e3 sr^-1 for order 4 at d = 0 looking up, 26 sr^-1 for order 3 between
- * depth nodes, against data below 0.3); log_bound = log(2 x that maximum) caps it. */
+ * parameters can make it spike far above any simulated value (sizes in tools/slab/README.md, "How the renderer uses
+ * the fit"); log_bound = log(2 x that maximum) caps it. */
 static double node_value(const cu_slab_model *m, int g, int k, int iv, int il, double d, double log_p);
 static void bound_groups(cu_slab_model *m)
 {
@@ -95,10 +80,10 @@ static double hg(double g, double mu)
  * multiply scattered flux is 1 - e^(-tau/mu0) - (R1 + T1), single scattering by its closed forms, for the transport
  * the tables were simulated with (tr: HG, or a chopped Mie table as delta-M: tau' = (1 - f) tau, g' = (g - f)/(1 - f),
  * single scattering approximated by HG(g')). The fitted orders
- * 2..16+, integrated over the hemispheres at d = 0 (up) and d = t (down), give more than that for thick slabs
- * (measured: +3 % at 500 m, +9 % at 1000 m, sun overhead) and less for thin ones (-5 % at 50 and 200 m). Where
- * they give more, kappa scales them down to the flux available; where less, they are left alone (kappa <= 1: the
- * model is capped, never inflated). */
+ * 2..16+, integrated over the hemispheres at d = 0 (up) and d = t (down), give more than that for thick slabs and
+ * less for thin ones (by how much: tools/slab/README.md, "How the renderer uses the fit"). Where they give more,
+ * kappa scales them down to the flux available; where less, they are left alone (kappa <= 1: the model is capped,
+ * never inflated). */
 static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
 {
     enum { NV = 36, NP = 24 };
@@ -142,98 +127,100 @@ typedef struct { int field, group, it, in; double value; int line; } entry;
 int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr, cu_error *err)
 {
     memset(m, 0, sizeof *m);
-    FILE *fp = fopen(path, "r");
-    if (!fp) {
-        snprintf(err->msg, sizeof err->msg, "%s: cannot open the slab model table: %s (tools/slab/gen_tables.sh "
-                 "makes it)", path, strerror(errno));
+    cu_textfile tf;
+    if (cu_textfile_open(&tf, path, "the slab model table", "tools/slab/gen_tables.sh makes it", err))
         return 1;
-    }
     size_t cap = 4096, n = 0;
     entry *e = malloc(cap * sizeof *e);
-    char line[512];
-    int ln = 0, rc = 1;
+    int rc = 1, r;
     unsigned char (*seen)[CU_SLAB_GROUPS][CU_SLAB_MAX_T][CU_SLAB_MAX_V] = NULL; /* each value exactly once */
     /* node grids are collected in file order, then checked ascending */
     int nn[F_COUNT] = {0};
     double nodes[F_COUNT][CU_SLAB_MAX_V];
-    while (e && fgets(line, sizeof line, fp)) {
-        ln++;
-        if (!strchr(line, '\n') && !feof(fp)) {
-            lfail(err, path, ln, "line longer than %s characters", "510");
+    while (e && (r = cu_textfile_next(&tf, err)) != 0) {
+        int ln = tf.line;
+        if (r < 0)
+            goto out;
+        if (tf.ntok != 5) {
+            cu_fail(err, "%s:%d: expected 'name group t_m node value', got %s fields", path, ln,
+                    tf.ntok > 5 ? "more" : "fewer");
             goto out;
         }
-        if (memchr(line, 0, strlen(line) + 1) != line + strlen(line)) {
-            lfail(err, path, ln, "%s", "NUL byte");
-            goto out;
-        }
-        char name[32], group[32], tstr[64], node[64], val[64], extra[8];
-        int k = sscanf(line, "%31s %31s %63s %63s %63s %7s", name, group, tstr, node, val, extra);
-        if (k <= 0 || name[0] == '#')
-            continue;
-        if (k != 5) {
-            lfail(err, path, ln, "expected 'name group t_m node value', got %s fields", k > 5 ? "more" : "fewer");
-            goto out;
-        }
+        const char *name = tf.tok[0], *group = tf.tok[1], *tstr = tf.tok[2], *node = tf.tok[3], *val = tf.tok[4];
         entry x = {.line = ln, .field = -1, .group = -1};
-        for (int f = 0; f < F_COUNT; f++)
-            if (!strcmp(name, field_names[f]))
-                x.field = f;
+        for (int k = 0; k < F_COUNT; k++)
+            if (!strcmp(name, field_names[k]))
+                x.field = k;
         if (x.field < 0) {
-            lfail(err, path, ln, "field 'name': unknown function '%s' (P, A1, B1, C, D, A2, B2)", name);
+            cu_fail(err, "%s:%d: field 'name': unknown function '%.31s' (P, A1, B1, C, D, A2, B2)", path, ln, name);
             goto out;
         }
         for (int g = 0; g < CU_SLAB_GROUPS; g++)
             if (!strcmp(group, group_names[g]))
                 x.group = g;
         if (x.group < 0) {
-            lfail(err, path, ln, "field 'group': unknown group '%s' (1 2 3 4 5-6 7-9 10-15 16+)", group);
+            cu_fail(err, "%s:%d: field 'group': unknown group '%.31s' (1 2 3 4 5-6 7-9 10-15 16+)", path, ln, group);
             goto out;
         }
         double t;
-        if (!parse_double(tstr, &t) || t <= 0) {
-            lfail(err, path, ln, "field 't_m': '%s' is not a positive number", tstr);
+        cu_num_status s = cu_text_number(tstr, &t);
+        if (s == CU_NUM_NOT_FLOAT) {
+            cu_text_fail_float(&tf, err, "t_m", tstr);
+            goto out;
+        }
+        if (s != CU_NUM_OK || t <= 0) {
+            cu_fail(err, "%s:%d: field 't_m': '%.63s' is not a positive number", path, ln, tstr);
             goto out;
         }
         x.it = node_index(m->t, &m->nt, CU_SLAB_MAX_T, t);
         if (x.it < 0) {
-            lfail(err, path, ln, "field 't_m': more than %s thickness nodes", "16");
+            cu_fail(err, "%s:%d: field 't_m': more than %d thickness nodes", path, ln, CU_SLAB_MAX_T);
             goto out;
         }
         const char *key = node_keys[x.field];
         size_t kl = strlen(key);
         double a;
-        if (strncmp(node, key, kl) || node[kl] != '=' || !parse_double(node + kl + 1, &a) || a < 0 || a > 180) {
-            lfail(err, path, ln, "field 'node': expected %s=<degrees in [0, 180]>", key);
+        if (strncmp(node, key, kl) || node[kl] != '=' || cu_text_number(node + kl + 1, &a) != CU_NUM_OK || a < 0 ||
+            a > 180) {
+            cu_fail(err, "%s:%d: field 'node': expected %s=<degrees in [0, 180]>", path, ln, key);
             goto out;
         }
         int max = x.field == F_P ? CU_SLAB_MAX_P : x.field >= F_A2 ? CU_SLAB_MAX_L : CU_SLAB_MAX_V;
         int slot = x.field == F_P ? 0 : x.field >= F_A2 ? 2 : 1;
         x.in = node_index(nodes[slot], &nn[slot], max, a);
         if (x.in < 0) {
-            lfail(err, path, ln, "field 'node': too many %s nodes", key);
+            cu_fail(err, "%s:%d: field 'node': too many %s nodes", path, ln, key);
             goto out;
         }
-        if (!parse_double(val, &x.value)) {
-            lfail(err, path, ln, "field 'value': '%s' is not a finite number", val);
+        s = cu_text_number(val, &x.value);
+        if (s == CU_NUM_NOT_FLOAT) {
+            cu_text_fail_float(&tf, err, "value", val);
+            goto out;
+        }
+        if (s != CU_NUM_OK) {
+            cu_fail(err, "%s:%d: field 'value': '%.63s' is not a finite number", path, ln, val);
             goto out;
         }
         /* the model takes logarithms of P, A1, A2 (and exponentiates C, D in the fit): they must be positive */
         int positive = x.field != F_B1 && x.field != F_B2;
         if (positive && !(x.value > 0)) {
-            lfail(err, path, ln, "field 'value': %s must be positive", name);
+            cu_fail(err, "%s:%d: field 'value': %s must be positive", path, ln, name);
             goto out;
         }
         if (n == cap) {
             entry *ne = realloc(e, 2 * cap * sizeof *e);
-            if (!ne)
-                break;
+            if (!ne) {
+                cu_fail(err, "%s:%d: out of memory", path, ln);
+                goto out;
+            }
             e = ne;
             cap *= 2;
         }
         e[n++] = x;
     }
+    int ln = tf.line;
     if (!e) {
-        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        cu_fail(err, "%s: out of memory", path);
         goto out;
     }
     m->np = nn[0];
@@ -243,26 +230,25 @@ int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr,
     memcpy(m->thv, nodes[1], sizeof(double) * (size_t)m->nv);
     memcpy(m->thl, nodes[2], sizeof(double) * (size_t)m->nl);
     if (m->nt < 1 || m->np < 2 || m->nv < 2 || m->nl < 1) {
-        snprintf(err->msg, sizeof err->msg, "%s:%d: table incomplete: %d thickness, %d Theta, %d thetaV, %d thetaL "
-                 "nodes", path, ln, m->nt, m->np, m->nv, m->nl);
+        cu_fail(err, "%s:%d: table incomplete: %d thickness, %d Theta, %d thetaV, %d thetaL nodes", path, ln, m->nt,
+                m->np, m->nv, m->nl);
         goto out;
     }
     if (!ascending(m->t, m->nt) || !ascending(m->th, m->np) || !ascending(m->thv, m->nv) ||
         !ascending(m->thl, m->nl)) {
-        snprintf(err->msg, sizeof err->msg, "%s: node grids must be listed in ascending order (thickness and each "
-                 "angle)", path);
+        cu_fail(err, "%s: node grids must be listed in ascending order (thickness and each angle)", path);
         goto out;
     }
     /* every value exactly once */
     seen = calloc(1, sizeof *seen * F_COUNT);
     if (!seen) {
-        snprintf(err->msg, sizeof err->msg, "%s: out of memory", path);
+        cu_fail(err, "%s: out of memory", path);
         goto out;
     }
     for (size_t i = 0; i < n; i++) {
         entry *x = &e[i];
         if (seen[x->field][x->group][x->it][x->in]++) {
-            lfail(err, path, x->line, "duplicate entry for %s", field_names[x->field]);
+            cu_fail(err, "%s:%d: duplicate entry for %s", path, x->line, field_names[x->field]);
             goto out;
         }
         double *dst = NULL;
@@ -283,10 +269,8 @@ int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr,
             for (int it = 0; it < m->nt; it++)
                 for (int in = 0; in < cnt; in++)
                     if (!seen[f][g][it][in]) {
-                        char what[160];
-                        snprintf(what, sizeof what, "missing %s for group %s, t = %g m, node %d", field_names[f],
-                                 group_names[g], m->t[it], in);
-                        snprintf(err->msg, sizeof err->msg, "%s:%d: %s", path, ln, what);
+                        cu_fail(err, "%s:%d: missing %s for group %s, t = %g m, node %d", path, ln, field_names[f],
+                                group_names[g], m->t[it], in);
                         goto out;
                     }
     }
@@ -299,7 +283,7 @@ int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr,
 out:
     free(seen);
     free(e);
-    fclose(fp);
+    cu_textfile_close(&tf);
     return rc;
 }
 
@@ -322,8 +306,8 @@ static int bracket(const double *v, int n, double x, double *w)
 }
 
 /* Eq. 3.32 at one (thV, thL) node pair, without the cos thL factor, given log P*. Evaluated in log space: the fit
- * leaves compensating parameters (A1* up to 5e53 against a tiny log^2 ratio) that overflow fp32 in the shader. The
- * log^2 guards are the fitter's (tools/slab). */
+ * can leave compensating parameters (a huge A1* against a tiny log^2 ratio) whose product overflows fp32 in the
+ * shader, so the texture holds log A1*, log A2*, log P*. The log^2 guards are the fitter's (tools/slab). */
 static double node_value(const cu_slab_model *m, int g, int k, int iv, int il, double d, double log_p)
 {
     double B = m->b1[g][k][iv] - m->b2[g][k][il];

@@ -86,6 +86,10 @@ static const bad_table bad[] = {
     {"chop_deg 95\n", "t.tbl:1: 'chop_deg' must be in (0, 90)"},
     {"angles 1e9\n", "t.tbl:1: 'angles' must be a count from 2 to 1000000"},
     {"g 0.8 0.8\n", "t.tbl:1: 'g' needs 3 numbers"},
+    /* finite as doubles, inf once stored in the float tables */
+    {HEAD "angles 2\n0 1 1e39 1\n180 1 1 1\n", "t.tbl:8: field 'P_g': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
+    {"sigma_ext_um2 1 1e300 1\n", "t.tbl:1: field 'sigma_ext_um2': '1e300' does not fit in a float (|x| <= 3.403e+38)"},
+    {"# comment\n\n  \t\nchop_deg 1e39\n", "t.tbl:4: field 'chop_deg': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
 };
 
 static void test_hostile_tables(void **st)
@@ -104,8 +108,24 @@ static void test_hostile_tables(void **st)
         if (rc == 0 || !msg || strcmp(msg, bad[i].message) != 0)
             fail_msg("case %zu: rc %d\n got      '%s'\n expected '%s'", i, rc, e.msg, bad[i].message);
     }
+    /* the line reader's own limits */
+    FILE *f = fopen("build/test-output/t.tbl", "w");
+    assert_non_null(f);
+    fputs("channels 3\n", f);
+    for (int i = 0; i < 600; i++)
+        fputc('x', f);
+    fputs("\n", f);
+    fclose(f);
     cu_phase_table t;
     cu_error e;
+    assert_int_not_equal(cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e), 0);
+    assert_non_null(strstr(e.msg, "t.tbl:2: line longer than 510 characters"));
+    f = fopen("build/test-output/t.tbl", "wb");
+    assert_non_null(f);
+    fwrite("channels 3\nchannels\0 3\n", 1, 23, f);
+    fclose(f);
+    assert_int_not_equal(cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e), 0);
+    assert_non_null(strstr(e.msg, "t.tbl:2: NUL byte in the line"));
     assert_int_not_equal(cu_phase_table_load_mie(&t, "build/test-output/none.tbl", &e), 0);
     assert_non_null(strstr(e.msg, "cannot open the Mie table"));
 }

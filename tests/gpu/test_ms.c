@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "collector.h"
 #include "density.h"
 #include "noise.h"
 #include "phase.h"
@@ -20,12 +21,14 @@
 
 #define T_DIR "build/test-output/ms"
 
-/* Writes the real table with line `drop` removed (0: none) and `extra` appended, then loads it. */
-static int load_variant(int drop, const char *replace_from, const char *replace_to, const char *extra, cu_error *e)
+/* Copies the committed table src to dst with line `drop` removed (0: none), the first `replace_from` replaced by
+ * `replace_to` and `extra` appended. */
+static void write_variant(const char *src, const char *dst, int drop, const char *replace_from, const char *replace_to,
+                          const char *extra)
 {
-    FILE *in = fopen("data/slab_fit_bouthors.txt", "r");
+    FILE *in = fopen(src, "r");
     assert_non_null(in);
-    FILE *out = fopen(T_DIR "/variant.txt", "w");
+    FILE *out = fopen(dst, "w");
     assert_non_null(out);
     char line[512];
     int ln = 0, replaced = 0;
@@ -45,6 +48,12 @@ static int load_variant(int drop, const char *replace_from, const char *replace_
         fputs(extra, out);
     fclose(in);
     fclose(out);
+}
+
+/* Writes the real slab model table changed as write_variant does, then loads it. */
+static int load_variant(int drop, const char *replace_from, const char *replace_to, const char *extra, cu_error *e)
+{
+    write_variant("data/slab_fit_bouthors.txt", T_DIR "/variant.txt", drop, replace_from, replace_to, extra);
     cu_slab_model *m = malloc(sizeof *m);
     cu_slab_transport tr;
     assert_int_equal(cu_slab_committed_transport("data", &tr, e), 0);
@@ -66,6 +75,13 @@ static void test_table_loader_rejects_bad_input(void **st)
     assert_int_equal(load_variant(0, NULL, NULL, NULL, &e), 0);
     expect_error(load_variant(0, "P 1 25 Theta=0 ", "P 1 25 Theta=0 nan", NULL, &e), &e, "variant.txt:3: field 'value'");
     expect_error(load_variant(0, "P 1 25 Theta=15 ", "P 1 25 Theta=15 -", NULL, &e), &e, "variant.txt:4: field 'value'");
+    /* finite as doubles, but they would be inf in the float textures */
+    expect_error(load_variant(0, "P 1 25 Theta=0 353.248", "P 1 25 Theta=0 1e39", NULL, &e), &e,
+                 "variant.txt:3: field 'value': '1e39' does not fit in a float");
+    expect_error(load_variant(0, "A1 1 25 thetaV=0 0.0013594", "A1 1 25 thetaV=0 1e300", NULL, &e), &e,
+                 "variant.txt:16: field 'value': '1e300' does not fit in a float");
+    expect_error(load_variant(0, "P 1 25 Theta=0 ", "P 1 1e39 Theta=0 ", NULL, &e), &e,
+                 "variant.txt:3: field 't_m': '1e39' does not fit in a float");
     expect_error(load_variant(0, "A1 1 25", "Q1 1 25", NULL, &e), &e, "unknown function 'Q1'");
     expect_error(load_variant(0, "B1 1 25", "B1 17 25", NULL, &e), &e, "unknown group '17'");
     expect_error(load_variant(0, "C 1 25 thetaV=0", "C 1 0 thetaV=0", NULL, &e), &e, "field 't_m'");
@@ -95,6 +111,40 @@ static void test_table_loader_rejects_bad_input(void **st)
     fclose(f);
     assert_int_not_equal(cu_slab_model_load(m, T_DIR "/binary.txt", tr, &e), 0);
     free(m);
+}
+
+/* Writes the committed collector table changed as write_variant does, then loads it. */
+static int load_collector_variant(const char *replace_from, const char *replace_to, const char *extra, cu_error *e)
+{
+    write_variant("data/slab_collector.txt", T_DIR "/collector.txt", 0, replace_from, replace_to, extra);
+    cu_collector c;
+    int rc = cu_collector_load(&c, T_DIR "/collector.txt", e);
+    if (!rc)
+        cu_collector_free(&c);
+    return rc;
+}
+
+static void test_collector_loader_rejects_bad_input(void **st)
+{
+    (void)st;
+    cu_error e;
+    if (load_collector_variant(NULL, NULL, NULL, &e))
+        fail_msg("%s", e.msg);
+    /* row 4 of the committed table is "25 0 0 0 45 0 0 0 0", row 5 the same at phiV = 90 */
+    static const struct { const char *row4, *message; } bad[] = {
+        {"25 0 0 0 45 0 1e39 0 0", "collector.txt:4: field 'cx_m': '1e39' does not fit in a float"},
+        {"25 0 0 0 45 -1e300 0 0 0", "collector.txt:4: field 'C_ms': '-1e300' does not fit in a float"},
+        {"25 0 0 0 45 0 0 0 nan", "collector.txt:4: field 'sigma_m': expected a finite number"},
+        {"25 0 0 0 45 0 0 0", "collector.txt:4: field 'sigma_m': expected a finite number"},
+        {"25 0 0 0 45 0 0 0 0 0", "collector.txt:4: more than 9 fields"},
+        {"25 0 30 0 45 0 0 0 0", "collector.txt:4: value out of range"},
+        {"25 0 0 0 90 0 0 0 0", "collector.txt:5: duplicate cell"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        expect_error(load_collector_variant("25 0 0 0 45 0 0 0 0", bad[i].row4, NULL, &e), &e, bad[i].message);
+    expect_error(load_collector_variant(NULL, NULL, "25 0 0 0 45 0 0 0 0\n", &e), &e, "rows for a grid of");
+    cu_collector c;
+    expect_error(cu_collector_load(&c, T_DIR "/nope.txt", &e), &e, "cannot open the collector table");
 }
 
 /* The twin's interpolation: at the nodes it is the fitted function, between them it stays between neighbours'
@@ -377,6 +427,7 @@ int main(void)
         return 1;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table_loader_rejects_bad_input),
+        cmocka_unit_test(test_collector_loader_rejects_bad_input),
         cmocka_unit_test(test_model_evaluation_is_finite_and_bounded),
         cmocka_unit_test(test_slab_energy_bounded),
         cmocka_unit_test(test_sphere_power_within_intercepted),

@@ -9,6 +9,10 @@ if [ ! -x "$BIN" ]; then
   exit 1
 fi
 
+# --- --help describes every option on stdout, --version names the release ----------------------------------------
+t_help_version cumulo-mie $BIN --m --x --angles --reff --veff --monodisperse --radius --lambda --table --band --dx \
+  --tail-stretch --poles --threads --help --version
+
 # --- bad arguments: one line on stderr naming the argument, exit status 2 -----------------------------------------
 t_expect neg-radius 2 "--radius" -- $BIN --monodisperse --radius -1
 t_expect zero-radius 2 "--radius" -- $BIN --monodisperse --radius 0
@@ -35,6 +39,8 @@ t_expect band-reversed 2 "--band" -- $BIN --table build/x.tbl --band 700,400,10
 t_expect table-with-lambda 2 "--lambda" -- $BIN --table build/x.tbl --lambda 550
 t_expect dx-zero 2 "--dx" -- $BIN --dx 0
 t_expect poles-two 2 "--poles" -- $BIN --poles 2 --lambda 550
+t_expect positional 2 "stray: unexpected argument" -- $BIN stray
+t_expect unwritable-table 1 "cannot open" -- $BIN --table /nonexistent/dir/x.tbl --band 500,600,100 --dx 1 --reff 0.5 --veff 0.05
 
 # --- one sphere (VALIDATION.md: m = 1.33 - 1e-5 i, x = 100) ------------------------------------------------------
 out=$($BIN --m 1.33,1e-5 --x 100 --angles 0,30,90,180 2>&1)

@@ -69,4 +69,7 @@ t_expect "grid too big" 2 "--grid expects" -- $P $S --dump-density "$T/d.raw" --
 t_expect "grid alone" 2 "--grid only applies" -- $P $S -o "$T/x.pfm" --grid 2,2,2
 t_expect "bad peak-mis" 2 "--peak-mis expects" -- $P $S -o "$T/x.pfm" --peak-mis 1.5
 t_expect "not a PFM" 2 "must end in .pfm" -- $P $S -o "$T/x.png"
+t_expect "missing -o value" 2 "-o needs a value" -- $P $S -o
+t_help_version cumulo-pt $P -o --spp --threads --seed --size --set --max-depth --aa --mode --peak-mis --dump-density \
+  --grid --quiet --help --version
 t_summary

@@ -1,25 +1,45 @@
 /* cumulo-mie: command-line front end to the Mie solver (one sphere, a droplet distribution, or the engine table). */
 #include "mie.h"
 #include "mietable.h"
+#include "version.h"
 #include "water.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-static const char *USAGE =
+static const char USAGE[] =
     "usage: cumulo-mie [options]\n"
-    "  one sphere:   --m N,K --x X [--angles A,B,...]       prints qext qsca qback g, then 'theta S11'\n"
+    "Lorenz-Mie scattering by water droplets, in one of three modes:\n"
+    "  one sphere:   --m N,K --x X [--angles A,B,...]\n"
+    "                prints qext qsca qback g, then 'theta S11' per angle\n"
     "  droplets:     [--reff UM --veff V | --monodisperse --radius UM] [--lambda NM] [--angles A,B,...]\n"
-    "                prints 'theta p' (sr^-1, normalised), g, qext, sigma_ext_um2\n"
+    "                prints 'theta p' (sr^-1, normalised) per angle, then g, qext, sigma_ext_um2\n"
     "  engine table: --table FILE [--reff UM --veff V | --monodisperse --radius UM] [--band LO,HI,STEP]\n"
-    "options: --m N,K   refractive index n - ik (K >= 0; overrides water)   --dx D  radius step in size parameter\n"
-    "         --tail-stretch S  radius step multiplier past the bulk of the distribution (default 4, 1 = uniform)\n"
-    "         --poles 0|1  subtract the quadrature error of resonances narrower than the step (default 1)\n"
-    "         --threads T (1-8)   --help\n";
+    "                writes the RGB phase table the renderer loads (data/mie_cloud.tbl); FILE '-' is stdout\n"
+    "options:\n"
+    "  --m N,K            refractive index m = N - iK (0 < N <= 10, 0 <= K <= 10); overrides water's\n"
+    "  --x X              size parameter 2 pi r / lambda of the one sphere, 1e-6..1e5\n"
+    "  --angles A,B,...   scattering angles in degrees, 0..180 (at most 1000)\n"
+    "  --reff UM          effective radius of the gamma distribution, um, 0.001..50 (default 6)\n"
+    "  --veff V           effective variance, 0.0001..0.25 (default 0.1)\n"
+    "  --monodisperse     one droplet radius instead of a distribution (needs --radius)\n"
+    "  --radius UM        that radius, um, 0.0001..5000\n"
+    "  --lambda NM        wavelength for the droplet mode, nm, 200..1100 (default 550)\n"
+    "  --table FILE       write the engine table to FILE\n"
+    "  --band LO,HI,STEP  wavelengths the table averages, nm (default 400,700,20); 200 <= LO < HI <= 1100,\n"
+    "                     HI - LO a multiple of STEP\n"
+    "  --dx D             radius step in size parameter, 0.001..1 (default 0.05)\n"
+    "  --tail-stretch S   radius step multiplier past the bulk of the distribution, 1..8 (default 4, 1 = uniform)\n"
+    "  --poles 0|1        subtract the quadrature error of resonances narrower than the step (default 1)\n"
+    "  --threads T        worker threads, 1..8 (default 2)\n"
+    "  -h, --help         this text\n"
+    "  --version          the version\n"
+    "Argument errors exit 2, failures while computing or writing exit 1.\n";
 
 /* Every argument error is one line naming the argument, then exit status 2 (see tools/mie/test_mie_cli.sh). */
 static int bad(const char *arg, const char *why, const char *val)
@@ -81,91 +101,115 @@ int main(int argc, char **argv)
     int have_x = 0, have_m = 0, have_lambda = 0, have_band = 0, have_reff = 0, have_radius = 0;
     const char *table = NULL;
 
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+    enum { O_REFF = 256, O_VEFF, O_LAMBDA, O_ANGLES, O_RADIUS, O_M, O_X, O_TABLE, O_DX, O_BAND, O_THREADS,
+           O_TAIL, O_POLES, O_MONO, O_VERSION };
+    static const struct option opts[] = {
+        {"reff", required_argument, NULL, O_REFF},       {"veff", required_argument, NULL, O_VEFF},
+        {"lambda", required_argument, NULL, O_LAMBDA},   {"angles", required_argument, NULL, O_ANGLES},
+        {"radius", required_argument, NULL, O_RADIUS},   {"m", required_argument, NULL, O_M},
+        {"x", required_argument, NULL, O_X},             {"table", required_argument, NULL, O_TABLE},
+        {"dx", required_argument, NULL, O_DX},           {"band", required_argument, NULL, O_BAND},
+        {"threads", required_argument, NULL, O_THREADS}, {"tail-stretch", required_argument, NULL, O_TAIL},
+        {"poles", required_argument, NULL, O_POLES},     {"monodisperse", no_argument, NULL, O_MONO},
+        {"help", no_argument, NULL, 'h'},                {"version", no_argument, NULL, O_VERSION},
+        {NULL, 0, NULL, 0}};
+    opterr = 0;
+    for (int o; (o = getopt_long(argc, argv, ":h", opts, NULL)) != -1;) {
+        const char *a = argv[optind - 1], *v = optarg;
+        double t[3];
+        switch (o) {
+        case 'h':
             fputs(USAGE, stdout);
             return 0;
-        }
-        if (!strcmp(a, "--monodisperse")) {
-            p.monodisperse = 1;
-            continue;
-        }
-        static const char *const valued[] = {"--reff", "--veff",   "--lambda", "--angles", "--radius", "--m",
-                                             "--x",    "--table", "--dx",     "--band",   "--threads",
-                                             "--tail-stretch", "--poles"};
-        int known = 0;
-        for (size_t k = 0; k < sizeof valued / sizeof valued[0]; k++)
-            known |= !strcmp(a, valued[k]);
-        if (!known)
-            return bad(a, "unknown option (see --help)", NULL);
-        if (i + 1 >= argc)
+        case O_VERSION:
+            printf("cumulo-mie %s (%s)\n", CU_VERSION, CU_GIT_DESCRIBE);
+            return 0;
+        case ':':
             return bad(a, "missing value", NULL);
-        const char *v = argv[++i];
-        double t[3];
-        if (!strcmp(a, "--reff")) {
+        case '?':
+            return bad(a, "unknown option (see --help)", NULL);
+        case O_MONO:
+            p.monodisperse = 1;
+            break;
+        case O_REFF:
             if (num(v, 1e-3, 50.0, &p.reff_um))
-                return bad(a, "expected an effective radius in um, 0.001-50", v);
+                return bad("--reff", "expected an effective radius in um, 0.001-50", v);
             have_reff = 1;
-        } else if (!strcmp(a, "--veff")) {
+            break;
+        case O_VEFF:
             /* alpha = (1-3v)/v >= 1 keeps n(r) smooth at r = 0, which the trapezoid rule relies on. */
             if (num(v, 1e-4, 0.25, &p.veff))
-                return bad(a, "expected an effective variance in 0.0001-0.25", v);
+                return bad("--veff", "expected an effective variance in 0.0001-0.25", v);
             have_reff = 1;
-        } else if (!strcmp(a, "--lambda")) {
+            break;
+        case O_LAMBDA:
             /* The Daimon-Masumura fit holds for 182-1129 nm. */
             if (num(v, 200.0, 1100.0, &lambda))
-                return bad(a, "expected a wavelength in nm, 200-1100", v);
+                return bad("--lambda", "expected a wavelength in nm, 200-1100", v);
             have_lambda = 1;
-        } else if (!strcmp(a, "--angles")) {
+            break;
+        case O_ANGLES:
             nangles = numlist(v, 0.0, 180.0, angles, MAXANG);
             if (nangles < 1)
-                return bad(a, "expected comma-separated angles in degrees, 0-180", v);
-        } else if (!strcmp(a, "--radius")) {
+                return bad("--angles", "expected comma-separated angles in degrees, 0-180", v);
+            break;
+        case O_RADIUS:
             if (num(v, 1e-4, 5000.0, &p.radius_um))
-                return bad(a, "expected a radius in um, 0.0001-5000", v);
+                return bad("--radius", "expected a radius in um, 0.0001-5000", v);
             have_radius = 1;
-        } else if (!strcmp(a, "--m")) {
+            break;
+        case O_M:
             if (numlist(v, -1e300, 1e300, t, 2) != 2 || !(t[0] > 0.0 && t[0] <= 10.0) ||
                 !(t[1] >= 0.0 && t[1] <= 10.0))
-                return bad(a, "expected N,K with 0 < N <= 10 and 0 <= K <= 10 (m = N - iK)", v);
+                return bad("--m", "expected N,K with 0 < N <= 10 and 0 <= K <= 10 (m = N - iK)", v);
             p.m = t[0] - I * t[1];
             p.use_m = 1;
             have_m = 1;
-        } else if (!strcmp(a, "--x")) {
+            break;
+        case O_X:
             if (num(v, 1e-6, 1e5, &x))
-                return bad(a, "expected a size parameter, 1e-6-1e5", v);
+                return bad("--x", "expected a size parameter, 1e-6-1e5", v);
             have_x = 1;
-        } else if (!strcmp(a, "--table")) {
+            break;
+        case O_TABLE:
             if (!*v)
-                return bad(a, "expected a file name", v);
+                return bad("--table", "expected a file name", v);
             table = v;
-        } else if (!strcmp(a, "--dx")) {
+            break;
+        case O_DX:
             if (num(v, 1e-3, 1.0, &p.dx))
-                return bad(a, "expected a size-parameter step, 0.001-1", v);
-        } else if (!strcmp(a, "--tail-stretch")) {
+                return bad("--dx", "expected a size-parameter step, 0.001-1", v);
+            break;
+        case O_TAIL:
             if (num(v, 1.0, 8.0, &p.tail_stretch))
-                return bad(a, "expected a step multiplier for the large-radius tail, 1-8", v);
-        } else if (!strcmp(a, "--poles")) {
+                return bad("--tail-stretch", "expected a step multiplier for the large-radius tail, 1-8", v);
+            break;
+        case O_POLES:
             if (strcmp(v, "0") && strcmp(v, "1"))
-                return bad(a, "expected 1 (correct the radius quadrature at narrow resonances) or 0", v);
+                return bad("--poles", "expected 1 (correct the radius quadrature at narrow resonances) or 0", v);
             p.poles = v[0] == '1';
-        } else if (!strcmp(a, "--band")) {
+            break;
+        case O_BAND:
             if (numlist(v, 1e-3, 1100.0, t, 3) != 3 || !(t[0] >= 200.0) || !(t[1] > t[0]))
-                return bad(a, "expected LO,HI,STEP in nm with 200 <= LO < HI <= 1100", v);
+                return bad("--band", "expected LO,HI,STEP in nm with 200 <= LO < HI <= 1100", v);
             p.lambda_min_nm = t[0];
             p.lambda_max_nm = t[1];
             p.dlambda_nm = t[2];
             if (fabs(fmod(t[1] - t[0] + 1e-9, t[2])) > 1e-6)
-                return bad(a, "HI - LO must be a multiple of STEP", v);
+                return bad("--band", "HI - LO must be a multiple of STEP", v);
             have_band = 1;
-        } else if (!strcmp(a, "--threads")) {
+            break;
+        case O_THREADS: {
             double th;
             if (num(v, 1.0, 8.0, &th) || th != floor(th))
-                return bad(a, "expected an integer 1-8", v);
+                return bad("--threads", "expected an integer 1-8", v);
             p.threads = (int)th;
+            break;
+        }
         }
     }
+    if (optind < argc)
+        return bad(argv[optind], "unexpected argument (cumulo-mie takes only options; see --help)", NULL);
     if (p.monodisperse && !have_radius)
         return bad("--monodisperse", "needs --radius", NULL);
     if (have_radius && !p.monodisperse)

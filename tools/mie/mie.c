@@ -89,7 +89,7 @@ int mie_solve(double complex m, double x, mie_work *w, mie_q *q)
     int nterms = mie_nterms(x);
     /* D_n(mx) is unstable upward when Im(m)x is large, so it is recurred downward (Wiscombe 1980, sec. 4)
      * from a start value given exactly by Lentz's continued fraction. Starting from D = 0 instead (BHMIE)
-     * leaves errors of 1e-5 in Q_ext at x = 100, m = 1.33, because the recurrence damps the wrong start
+     * leaves errors in Q_ext at large x (tools/mie/README.md), because the recurrence damps the wrong start
      * only slowly while n < |mx|. */
     int nmx = nterms + 1;
     if (grow(w, nterms, nmx) != 0)
@@ -166,44 +166,54 @@ void mie_amplitude(const mie_work *w, int nterms, double mu, double complex *s1,
     *s2 = conj(a2);
 }
 
+void mie_series_block(const double complex *a, const double complex *b, int nterms, const double *mu, int ntarget,
+                      int nj, double *pit, double *taut, double acc[2][8][MIE_JBLOCK])
+{
+    enum { J = MIE_JBLOCK };
+    double pim1[J], pin[J], m[J];
+    for (int j = 0; j < J; j++) {
+        m[j] = mu[j];
+        pim1[j] = 0.0;
+        pin[j] = 1.0;
+        for (int k = 0; k < 8; k++)
+            acc[0][k][j] = acc[1][k][j] = 0.0;
+    }
+    for (int n = 1; n <= nterms; n++) {
+        double fn = n;
+        double cn = (2.0 * fn + 1.0) / (fn * (fn + 1.0));
+        double car = cn * creal(a[n - 1]), cai = cn * cimag(a[n - 1]);
+        double cbr = cn * creal(b[n - 1]), cbi = cn * cimag(b[n - 1]);
+        double c1 = (2.0 * fn + 1.0) / fn, c2 = (fn + 1.0) / fn, np1 = fn + 1.0;
+        double(*A)[J] = acc[(n & 1) ? 0 : 1];
+        if (n == ntarget)
+            for (int j = 0; j < nj; j++) {
+                pit[j] = pin[j];
+                taut[j] = fn * m[j] * pin[j] - np1 * pim1[j];
+            }
+        for (int j = 0; j < J; j++) {
+            double p = pin[j], pm = pim1[j];
+            double tau = fn * m[j] * p - np1 * pm;
+            A[0][j] += car * p;
+            A[1][j] += cai * p;
+            A[2][j] += cbr * tau;
+            A[3][j] += cbi * tau;
+            A[4][j] += car * tau;
+            A[5][j] += cai * tau;
+            A[6][j] += cbr * p;
+            A[7][j] += cbi * p;
+            pim1[j] = p;
+            pin[j] = c1 * m[j] * p - c2 * pm;
+        }
+    }
+}
+
 void mie_s11_pairs(const mie_work *w, int nterms, const double *mu, int nmu, double weight, double *fwd,
                    double *bwd)
 {
     enum { J = MIE_JBLOCK };
     for (int j0 = 0; j0 < nmu; j0 += J) {
-        /* acc[parity][k][j]: k = 0,1 Re/Im sum c a pi; 2,3 c b tau; 4,5 c a tau; 6,7 c b pi.
-         * Fixed-size blocks keep the working set in L1 and give the compiler a constant trip count. */
         double acc[2][8][J];
-        double pim1[J], pin[J], m[J];
-        for (int j = 0; j < J; j++) {
-            m[j] = mu[j0 + j];
-            pim1[j] = 0.0;
-            pin[j] = 1.0;
-            for (int k = 0; k < 8; k++)
-                acc[0][k][j] = acc[1][k][j] = 0.0;
-        }
-        for (int n = 1; n <= nterms; n++) {
-            double fn = n;
-            double cn = (2.0 * fn + 1.0) / (fn * (fn + 1.0));
-            double car = cn * creal(w->a[n - 1]), cai = cn * cimag(w->a[n - 1]);
-            double cbr = cn * creal(w->b[n - 1]), cbi = cn * cimag(w->b[n - 1]);
-            double c1 = (2.0 * fn + 1.0) / fn, c2 = (fn + 1.0) / fn, np1 = fn + 1.0;
-            double(*A)[J] = acc[(n & 1) ? 0 : 1];
-            for (int j = 0; j < J; j++) {
-                double p = pin[j], pm = pim1[j];
-                double tau = fn * m[j] * p - np1 * pm;
-                A[0][j] += car * p;
-                A[1][j] += cai * p;
-                A[2][j] += cbr * tau;
-                A[3][j] += cbi * tau;
-                A[4][j] += car * tau;
-                A[5][j] += cai * tau;
-                A[6][j] += cbr * p;
-                A[7][j] += cbi * p;
-                pim1[j] = p;
-                pin[j] = c1 * m[j] * p - c2 * pm;
-            }
-        }
+        mie_series_block(w->a, w->b, nterms, mu + j0, 0, J, NULL, NULL, acc);
         for (int j = 0; j < J && j0 + j < nmu; j++) {
             double(*O)[J] = acc[0];
             double(*E)[J] = acc[1];

@@ -33,6 +33,15 @@ void mie_amplitude(const mie_work *w, int nterms, double mu, double complex *s1,
 /* Block size of mie_s11_pairs: mu arrays are padded to a multiple of this so the inner loop vectorises. */
 enum { MIE_JBLOCK = 32 };
 
+/* The Mie series of S1 and S2 (Bohren-Huffman sign) at one block of MIE_JBLOCK directions mu[0..MIE_JBLOCK-1] from
+ * the coefficients a, b (n = 1..nterms, index n-1), the one loop mie_s11_pairs and res_amplitudes share. The sums
+ * are split by the parity of n, acc[0] odd and acc[1] even, so that the same pass gives -mu as well (see
+ * mie_s11_pairs); acc[.][k]: k = 0,1 Re/Im of sum c_n a_n pi_n; 2,3 c b tau; 4,5 c a tau; 6,7 c b pi, with
+ * c_n = (2n+1)/(n(n+1)). Fixed-size blocks keep the working set in L1 and give the compiler a constant trip count.
+ * When ntarget is in 1..nterms, pi_n and tau_n of n = ntarget at the first nj directions go to pit and taut. */
+void mie_series_block(const double complex *a, const double complex *b, int nterms, const double *mu, int ntarget,
+                      int nj, double *pit, double *taut, double acc[2][8][MIE_JBLOCK]);
+
 /* Adds weight * (|S1|^2 + |S2|^2)/2 at both mu_j and -mu_j (mu_j >= 0) into fwd[j] and bwd[j].
  * The parity relations pi_n(-mu) = (-1)^(n-1) pi_n(mu), tau_n(-mu) = (-1)^n tau_n(mu) give the backward
  * hemisphere from the same Legendre recurrence, halving the work of the size-distribution loop.

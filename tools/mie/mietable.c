@@ -21,13 +21,13 @@ mt_params mt_params_default(void)
     p.veff = 0.1;
     p.radius_um = 6.0;
     /* With the narrow resonances corrected as poles (resonance.h) the radius quadrature converges
-     * exponentially: at dx = 0.05 halving the step changes the table by < 1e-6 (data/mie_cloud.md). The cost
-     * is one extra Mie evaluation per corrected pole, which grows with dx; 0.05 is near the cheapest. */
+     * exponentially, so a coarse step suffices; the cost is one extra Mie evaluation per corrected pole, which
+     * grows with dx. 0.05 is near the cheapest step at the table's accuracy (tools/mie/README.md). */
     p.dx = 0.05;
     p.lambda_min_nm = 400.0;
     p.lambda_max_nm = 700.0;
-    /* Cubic product integration over wavelength (band_weights): 20 nm steps change the table by < 1e-5
-     * against 10 nm. */
+    /* Cubic product integration over wavelength (band_weights) converges fast enough for 20 nm steps
+     * (tools/mie/README.md). */
     p.dlambda_nm = 20.0;
     p.tail_stretch = 4.0;
     p.threads = 2;
@@ -259,8 +259,9 @@ static int cell_poles(const mt_angles *a, const spectral *s, const rmap *map, do
     int nmax = nterms < P->np ? nterms : P->np;
     double hx = x - P->xp;
     double complex mb = conj(s->m);
-    /* Narrow resonances are those of the edge modes, n > x - 2.5 x^(1/3) (measured); 3.5 leaves a margin and
-     * keeps the broad low modes, whose 1/a_n is not linear across a cell, out of the pole search. */
+    /* Narrow resonances are those of the edge modes, n > x - c x^(1/3) (c from tools/mie/README.md); 3.5
+     * leaves a margin and keeps the broad low modes, whose 1/a_n is not linear across a cell, out of the pole
+     * search. */
     int nlo = (int)(P->xp - 3.5 * cbrt(P->xp));
     if (nlo < 1)
         nlo = 1;
@@ -277,7 +278,8 @@ static int cell_poles(const mt_angles *a, const spectral *s, const rmap *map, do
             if (!(creal(t) > -0.5 && creal(t) < 1.5 && fabs(cimag(t)) < 4.0))
                 continue;
             /* h ~ (x - z)/r predicts the residue too. A pole adds ~pi |r| (in units of the cell's own
-             * contribution hx); below 1e-7 hx it is not worth the search (measured: < 2e-7 on the table). */
+             * contribution hx); below 1e-7 hx it is not worth the search (what skipping them costs:
+             * tools/mie/README.md). */
             if (cabs(hx / (hc - hp)) < 1e-7 * hx)
                 continue;
             double complex z, r;

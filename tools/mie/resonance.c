@@ -1,5 +1,6 @@
 /* Poles of the Mie coefficients in the complex size-parameter plane and the trapezoid error they cause. */
 #include "resonance.h"
+#include "mie.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -165,47 +166,13 @@ void res_amplitudes(const double complex *a, const double complex *b, int nterms
                     int ntarget, double *pit, double *taut, double complex *s1f, double complex *s2f,
                     double complex *s1b, double complex *s2b)
 {
-    /* The loop of mie_s11_pairs (blocks of J directions so that the inner loop vectorises), keeping the sums
-     * instead of |S|^2. */
-    enum { J = 32 };
+    enum { J = MIE_JBLOCK };
     for (int j0 = 0; j0 < nmu; j0 += J) {
-        double acc[2][8][J]; /* [odd, even n][Re, Im of c a pi, c b tau, c a tau, c b pi][direction] */
-        double pim1[J], pin[J], m[J];
+        double acc[2][8][J], m[J];
         int nj = nmu - j0 < J ? nmu - j0 : J;
-        for (int j = 0; j < J; j++) {
-            m[j] = j < nj ? mu[j0 + j] : 1.0;
-            pim1[j] = 0.0;
-            pin[j] = 1.0;
-            for (int k = 0; k < 8; k++)
-                acc[0][k][j] = acc[1][k][j] = 0.0;
-        }
-        for (int n = 1; n <= nterms; n++) {
-            double fn = n;
-            double cn = (2.0 * fn + 1.0) / (fn * (fn + 1.0));
-            double car = cn * creal(a[n - 1]), cai = cn * cimag(a[n - 1]);
-            double cbr = cn * creal(b[n - 1]), cbi = cn * cimag(b[n - 1]);
-            double c1 = (2.0 * fn + 1.0) / fn, c2 = (fn + 1.0) / fn, np1 = fn + 1.0;
-            double(*A)[J] = acc[(n & 1) ? 0 : 1];
-            if (n == ntarget)
-                for (int j = 0; j < nj; j++) {
-                    pit[j0 + j] = pin[j];
-                    taut[j0 + j] = fn * m[j] * pin[j] - np1 * pim1[j];
-                }
-            for (int j = 0; j < J; j++) {
-                double p = pin[j], pm = pim1[j];
-                double tau = fn * m[j] * p - np1 * pm;
-                A[0][j] += car * p;
-                A[1][j] += cai * p;
-                A[2][j] += cbr * tau;
-                A[3][j] += cbi * tau;
-                A[4][j] += car * tau;
-                A[5][j] += cai * tau;
-                A[6][j] += cbr * p;
-                A[7][j] += cbi * p;
-                pim1[j] = p;
-                pin[j] = c1 * m[j] * p - c2 * pm;
-            }
-        }
+        for (int j = 0; j < J; j++)
+            m[j] = j < nj ? mu[j0 + j] : 1.0; /* padding: any direction, its sums are not read */
+        mie_series_block(a, b, nterms, m, ntarget, nj, pit + j0, taut + j0, acc);
         /* pi_n(-mu) = (-1)^(n-1) pi_n(mu), tau_n(-mu) = (-1)^n tau_n(mu): odd n keep pi and flip tau. */
         double(*o)[J] = acc[0];
         double(*e)[J] = acc[1];

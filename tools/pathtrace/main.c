@@ -1,7 +1,11 @@
 /* tools/pathtrace/main.c: build/cumulo-pt, the command line of the reference path tracer (usage in README.md). */
+#include "error.h"
 #include "image.h"
 #include "pt.h"
+#include "version.h"
 #include <errno.h>
+#include <getopt.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,9 +19,28 @@
 #define MAX_SETS 64
 
 static const char usage[] =
-    "usage: cumulo-pt SCENE -o OUT.pfm [--spp N] [--threads N] [--seed S] [--size WxH] [--set section.key=value]...\n"
-    "                 [--max-depth N] [--aa] [--mode radiance|transmittance] [--peak-mis P] [--quiet]\n"
-    "                 [--dump-density FILE [--grid NX,NY,NZ]]\n";
+    "usage: cumulo-pt SCENE -o OUT.pfm [options]\n"
+    "       cumulo-pt SCENE --dump-density FILE [--grid NX,NY,NZ]\n"
+    "Renders SCENE by volumetric path tracing (all orders of scattering) into OUT.pfm, the mean radiance per pixel,\n"
+    "and OUT.pfm.stderr.pfm, its standard error (see tools/pathtrace/README.md).\n"
+    "options:\n"
+    "  -o OUT.pfm               output image (must end in .pfm)\n"
+    "  --spp N                  samples per pixel, 1..100000000 (default 16)\n"
+    "  --threads N              worker threads, 1..256 (default: one per online CPU)\n"
+    "  --seed S                 random seed, an unsigned 64-bit integer (default 1)\n"
+    "  --size WxH               image size, 1..16384 each (default: the scene's [output] size)\n"
+    "  --set section.key=value  override a scene key, as cumulo --set does (at most 64)\n"
+    "  --max-depth N            scattering events per path before it is cut, 0..1000000000 (default 1000000)\n"
+    "  --aa                     jitter inside each pixel (box filter) instead of the pixel centre\n"
+    "  --mode M                 radiance (default) or transmittance, exp(-tau) along each camera ray\n"
+    "  --peak-mis P             probability per scattering event of the forward-peak sun strategy, [0, 1]\n"
+    "                           (default 1; changes the noise, never the expectation)\n"
+    "  --dump-density FILE      write the k_e grid the tracer sees to FILE and FILE.txt\n"
+    "  --grid NX,NY,NZ          that grid, 1..4096 each, at most 2^30 voxels (default 128,128,128)\n"
+    "  -q, --quiet              no progress bar, no summary line\n"
+    "  -h, --help               this text\n"
+    "  --version                the version\n"
+    "Argument errors exit 2; a bad scene, a bad --set and unwritable outputs exit 1.\n";
 
 /* Whole-string unsigned integer in [lo, hi]; 0 on success. */
 static int parse_u64(const char *s, unsigned long long lo, unsigned long long hi, unsigned long long *out)
@@ -39,11 +62,16 @@ static int ends_with(const char *s, const char *suffix)
     return a >= b && strcmp(s + a - b, suffix) == 0;
 }
 
-static int bad(const char *fmt, const char *a, const char *b)
+/* A usage error: one line, exit status 2. */
+static int bad(const char *fmt, ...) CU_PRINTF(1, 2);
+static int bad(const char *fmt, ...)
 {
+    va_list ap;
+    va_start(ap, fmt);
     fprintf(stderr, "cumulo-pt: ");
-    fprintf(stderr, fmt, a, b);
+    vfprintf(stderr, fmt, ap);
     fprintf(stderr, "\n");
+    va_end(ap);
     return 2;
 }
 
@@ -54,83 +82,105 @@ int main(int argc, char **argv)
     unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0;
     pt_mode mode = PT_MODE_RADIANCE;
     double peak_mis = PT_GUIDE_DEFAULT;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int takes = strcmp(a, "-o") == 0 || strcmp(a, "--spp") == 0 || strcmp(a, "--threads") == 0 ||
-                    strcmp(a, "--seed") == 0 || strcmp(a, "--size") == 0 || strcmp(a, "--set") == 0 ||
-                    strcmp(a, "--max-depth") == 0 || strcmp(a, "--mode") == 0 || strcmp(a, "--dump-density") == 0 ||
-                    strcmp(a, "--grid") == 0 || strcmp(a, "--peak-mis") == 0;
-        if (takes && i + 1 >= argc)
-            return bad("%s needs a value%s", a, "");
-        const char *v = takes ? argv[++i] : NULL;
-        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+    enum { O_SPP = 256, O_THREADS, O_SEED, O_SIZE, O_SET, O_MAX_DEPTH, O_MODE, O_PEAK_MIS, O_DUMP, O_GRID, O_AA,
+           O_VERSION };
+    static const struct option opts[] = {
+        {"spp", required_argument, NULL, O_SPP},           {"threads", required_argument, NULL, O_THREADS},
+        {"seed", required_argument, NULL, O_SEED},         {"size", required_argument, NULL, O_SIZE},
+        {"set", required_argument, NULL, O_SET},           {"max-depth", required_argument, NULL, O_MAX_DEPTH},
+        {"mode", required_argument, NULL, O_MODE},         {"peak-mis", required_argument, NULL, O_PEAK_MIS},
+        {"dump-density", required_argument, NULL, O_DUMP}, {"grid", required_argument, NULL, O_GRID},
+        {"aa", no_argument, NULL, O_AA},                   {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},                  {"version", no_argument, NULL, O_VERSION},
+        {NULL, 0, NULL, 0}};
+    opterr = 0;
+    for (int o; (o = getopt_long(argc, argv, ":o:qh", opts, NULL)) != -1;) {
+        const char *v = optarg;
+        char tail, *end;
+        switch (o) {
+        case 'h':
             fputs(usage, stdout);
             return 0;
-        } else if (strcmp(a, "-o") == 0) {
+        case O_VERSION:
+            printf("cumulo-pt %s (%s)\n", CU_VERSION, CU_GIT_DESCRIBE);
+            return 0;
+        case ':':
+            return bad("%s needs a value", argv[optind - 1]);
+        case '?':
+            return bad("unknown option '%s'", argv[optind - 1]);
+        case 'o':
             out = v;
-        } else if (strcmp(a, "--spp") == 0) {
+            break;
+        case O_SPP:
             if (parse_u64(v, 1, 100000000, &spp))
-                return bad("--spp expects a count from 1 to 100000000, got '%s'%s", v, "");
-        } else if (strcmp(a, "--threads") == 0) {
+                return bad("--spp expects a count from 1 to 100000000, got '%s'", v);
+            break;
+        case O_THREADS:
             if (parse_u64(v, 1, 256, &threads))
-                return bad("--threads expects a count from 1 to 256, got '%s'%s", v, "");
-        } else if (strcmp(a, "--seed") == 0) {
+                return bad("--threads expects a count from 1 to 256, got '%s'", v);
+            break;
+        case O_SEED:
             if (parse_u64(v, 0, 18446744073709551615ull, &seed))
-                return bad("--seed expects an unsigned 64-bit integer, got '%s'%s", v, "");
-        } else if (strcmp(a, "--max-depth") == 0) {
+                return bad("--seed expects an unsigned 64-bit integer, got '%s'", v);
+            break;
+        case O_MAX_DEPTH:
             if (parse_u64(v, 0, 1000000000, &max_depth))
-                return bad("--max-depth expects a count from 0 to 1000000000, got '%s'%s", v, "");
-        } else if (strcmp(a, "--size") == 0) {
-            char tail;
+                return bad("--max-depth expects a count from 0 to 1000000000, got '%s'", v);
+            break;
+        case O_SIZE:
             if (sscanf(v, "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
                 height > 16384)
-                return bad("--size expects WxH with 1..16384, got '%s'%s", v, "");
-        } else if (strcmp(a, "--set") == 0) {
+                return bad("--size expects WxH with 1..16384, got '%s'", v);
+            break;
+        case O_SET:
             if (nsets == MAX_SETS)
-                return bad("at most 64 --set options%s%s", "", "");
+                return bad("at most %d --set options", MAX_SETS);
             sets[nsets++] = v;
-        } else if (strcmp(a, "--mode") == 0) {
+            break;
+        case O_MODE:
             if (strcmp(v, "radiance") == 0)
                 mode = PT_MODE_RADIANCE;
             else if (strcmp(v, "transmittance") == 0)
                 mode = PT_MODE_TRANSMITTANCE;
             else
-                return bad("--mode must be radiance or transmittance, got '%s'%s", v, "");
-        } else if (strcmp(a, "--peak-mis") == 0) {
-            char *end;
+                return bad("--mode must be radiance or transmittance, got '%s'", v);
+            break;
+        case O_PEAK_MIS:
             errno = 0;
             peak_mis = strtod(v, &end);
             if (end == v || *end || errno || !(peak_mis >= 0 && peak_mis <= 1))
-                return bad("--peak-mis expects a probability in [0, 1], got '%s'%s", v, "");
-        } else if (strcmp(a, "--dump-density") == 0) {
+                return bad("--peak-mis expects a probability in [0, 1], got '%s'", v);
+            break;
+        case O_DUMP:
             dump = v;
-        } else if (strcmp(a, "--grid") == 0) {
-            char tail;
+            break;
+        case O_GRID:
             if (sscanf(v, "%d,%d,%d%c", &grid[0], &grid[1], &grid[2], &tail) != 3 || grid[0] < 1 || grid[1] < 1 ||
                 grid[2] < 1 || grid[0] > 4096 || grid[1] > 4096 || grid[2] > 4096 ||
                 (double)grid[0] * grid[1] * grid[2] > 1073741824.0)
-                return bad("--grid expects NX,NY,NZ with 1..4096 each and at most 2^30 voxels, got '%s'%s", v, "");
+                return bad("--grid expects NX,NY,NZ with 1..4096 each and at most 2^30 voxels, got '%s'", v);
             have_grid = 1;
-        } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
+            break;
+        case 'q':
             quiet = 1;
-        } else if (strcmp(a, "--aa") == 0) {
+            break;
+        case O_AA:
             aa = 1;
-        } else if (a[0] == '-' && a[1]) {
-            return bad("unknown option '%s'%s", a, "");
-        } else if (!scene_path) {
-            scene_path = a;
-        } else {
-            return bad("more than one scene given ('%s')%s", a, "");
+            break;
         }
     }
-    if (!scene_path || (!out && !dump)) {
-        fputs(usage, stderr);
-        return 2;
+    /* getopt_long has moved the operands to the end */
+    for (; optind < argc; optind++) {
+        if (scene_path)
+            return bad("more than one scene given ('%s')", argv[optind]);
+        scene_path = argv[optind];
     }
+    if (!scene_path || (!out && !dump))
+        return bad("needs SCENE and -o OUT.pfm or --dump-density FILE (usage: cumulo-pt --help)");
     if (out && !ends_with(out, ".pfm"))
-        return bad("output '%s' must end in .pfm%s", out, "");
+        return bad("output '%s' must end in .pfm", out);
     if (have_grid && !dump)
-        return bad("--grid only applies to --dump-density%s%s", "", "");
+        return bad("--grid only applies to --dump-density");
 
     cu_scene *s;
     cu_error e;

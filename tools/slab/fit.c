@@ -1,14 +1,33 @@
 /* cumulo-slab-fit: fits eq. 3.32 (and a log-separable alternative) to cumulo-slab tables, reports fit errors per group. */
 #include "fitlib.h"
+#include "version.h"
+#include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-static void die(const char *m)
+/* A usage error (exit 2) or a failure of the run (exit 1): one line. */
+static void die(int code, const char *m, const char *arg)
 {
-    fprintf(stderr, "cumulo-slab-fit: error: %s\n", m);
-    exit(2);
+    fprintf(stderr, "cumulo-slab-fit: error: %s%s%s\n", arg ? arg : "", arg ? ": " : "", m);
+    exit(code);
 }
+
+static const char USAGE[] =
+    "usage: cumulo-slab-fit [options] TABLE...\n"
+    "Fits eq. 3.32 (Bouthors) and two log-separable forms per (group, thickness) to cumulo-slab --report table files\n"
+    "and prints the relative fit errors per group.\n"
+    "options:\n"
+    "  --model M        bouthors, logsep, logsep2 or all (default all)\n"
+    "  --holdout        train on phi_V != 90 and report the errors on the held-out phi_V = 90 cells as well\n"
+    "  --frac F         count only cells with C > F times the largest C of their (group, t) slice, (0, 1)\n"
+    "                   (default 0.01)\n"
+    "  --out PREFIX     write each model's parameters to PREFIX_MODEL.txt (the renderer reads PREFIX_bouthors.txt)\n"
+    "  --predict PREFIX write every cell with the model's value to PREFIX_MODEL.txt\n"
+    "  -h, --help       this text\n"
+    "  --version        the version\n"
+    "Argument errors exit 2, unreadable tables and unwritable outputs exit 1.\n";
 
 int main(int argc, char **argv)
 {
@@ -19,31 +38,61 @@ int main(int argc, char **argv)
     int n = 0;
     setvbuf(stdout, NULL, _IOLBF, 0);   /* reports are long runs: keep the file current line by line */
     char msg[512];
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help")) {
-            printf("usage: cumulo-slab-fit [--model bouthors|logsep|logsep2|all] [--holdout] [--frac F] [--out PREFIX] [--predict FILE] TABLE...\n"
-                   "Fits per (group, thickness); --holdout trains on phi_V != 90 and reports errors on phi_V = 90.\n");
+    enum { O_MODEL = 256, O_HOLDOUT, O_FRAC, O_OUT, O_PREDICT, O_VERSION };
+    static const struct option opts[] = {
+        {"model", required_argument, NULL, O_MODEL}, {"holdout", no_argument, NULL, O_HOLDOUT},
+        {"frac", required_argument, NULL, O_FRAC},   {"out", required_argument, NULL, O_OUT},
+        {"predict", required_argument, NULL, O_PREDICT}, {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, O_VERSION},   {NULL, 0, NULL, 0}};
+    opterr = 0;
+    for (int o; (o = getopt_long(argc, argv, ":h", opts, NULL)) != -1;) {
+        const char *a = argv[optind - 1], *v = optarg;
+        char *end;
+        switch (o) {
+        case 'h':
+            fputs(USAGE, stdout);
             return 0;
-        } else if (!strcmp(argv[i], "--model") && i + 1 < argc) {
-            const char *m = argv[++i];
+        case O_VERSION:
+            printf("cumulo-slab-fit %s (%s)\n", CU_VERSION, CU_GIT_DESCRIBE);
+            return 0;
+        case ':':
+            die(2, "needs a value (see --help)", a);
+            break;
+        case '?':
+            die(2, "unknown option (see --help)", a);
+            break;
+        case O_MODEL:
             models[0] = models[1] = models[2] = 0;
-            if (!strcmp(m, "bouthors")) models[0] = 1;
-            else if (!strcmp(m, "logsep")) models[1] = 1;
-            else if (!strcmp(m, "logsep2")) models[2] = 1;
-            else if (!strcmp(m, "all") || !strcmp(m, "both")) models[0] = models[1] = models[2] = 1;
-            else die("--model must be bouthors, logsep, logsep2 or all");
-        } else if (!strcmp(argv[i], "--holdout")) holdout = 1;
-        else if (!strcmp(argv[i], "--frac") && i + 1 < argc) frac = atof(argv[++i]);
-        else if (!strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
-        else if (!strcmp(argv[i], "--predict") && i + 1 < argc) predict = argv[++i];
-        else if (argv[i][0] == '-') die("unknown option (see --help)");
-        else {
-            if (cu_cells_read(argv[i], &cells, &n, msg, sizeof msg)) die(msg);
-            nfiles++;
+            if (!strcmp(v, "bouthors")) models[0] = 1;
+            else if (!strcmp(v, "logsep")) models[1] = 1;
+            else if (!strcmp(v, "logsep2")) models[2] = 1;
+            else if (!strcmp(v, "all") || !strcmp(v, "both")) models[0] = models[1] = models[2] = 1;
+            else die(2, "must be bouthors, logsep, logsep2 or all", "--model");
+            break;
+        case O_HOLDOUT:
+            holdout = 1;
+            break;
+        case O_FRAC:
+            errno = 0;
+            frac = strtod(v, &end);
+            if (end == v || *end || errno || !(frac > 0 && frac < 1))
+                die(2, "must be a number in (0,1)", "--frac");
+            break;
+        case O_OUT:
+            out = v;
+            break;
+        case O_PREDICT:
+            predict = v;
+            break;
         }
     }
-    if (!nfiles || n == 0) die("no table rows given");
-    if (!(frac > 0 && frac < 1)) die("--frac must be in (0,1)");
+    if (optind == argc)
+        die(2, "no TABLE given (see --help)", NULL);
+    for (; optind < argc; optind++, nfiles++)
+        if (cu_cells_read(argv[optind], &cells, &n, msg, sizeof msg))
+            die(1, msg, NULL);
+    if (n <= 0)
+        die(1, "no table rows in the given files", NULL);
     int *use = NULL;
     if (holdout) {
         use = malloc(sizeof(int) * n);
@@ -68,7 +117,7 @@ int main(int argc, char **argv)
         if (out) {
             char path[4096];
             snprintf(path, sizeof path, "%s_%s.txt", out, mname);
-            if (!(fo = fopen(path, "w"))) die("cannot write output table");
+            if (!(fo = fopen(path, "w"))) die(1, "cannot write the output table", path);
             fprintf(fo, "# %s fit of cumulo-slab C tables (C = I/F_sun, sr^-1; lengths in metres). %s\n", mname,
                     mdl == CU_MODEL_BOUTHORS ? "C = P*(Theta) A1*(thV) A2*(thL) cos thL log^2(d+D*)/log^2(B*+D*) "
                                               "exp(-(d-B*)^2/(2 C*^2)), B* = B1*(thV) - B2*(thL)  (eq. 3.32)"
@@ -80,7 +129,7 @@ int main(int argc, char **argv)
         if (predict) {
             char path[4096];
             snprintf(path, sizeof path, "%s_%s.txt", predict, mname);
-            if (!(fpred = fopen(path, "w"))) die("cannot write prediction file");
+            if (!(fpred = fopen(path, "w"))) die(1, "cannot write the prediction file", path);
             fprintf(fpred, "# group t_m d_m thetaV phiV thetaL C C_se model_%s\n", mname);
         }
         printf("\n## model %s\n# group  t_m  cells  median_rel  p90_rel  mc_noise_median%s  lm_iter status\n", mname,

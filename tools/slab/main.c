@@ -1,6 +1,8 @@
 /* cumulo-slab: command-line front end of the slab Monte Carlo (totals, radiance, orders, interior BSDF tables). */
 #include "slab.h"
+#include "version.h"
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -14,27 +16,70 @@
 
 static int g_rank_silent;  /* set once before any output; only rank 0 of an MPI job prints */
 
+static void finish(int code)
+{
+#ifdef CU_SLAB_MPI
+    MPI_Finalize();
+#endif
+    exit(code);
+}
+
+/* One line on stderr, then exit: 2 for a usage error (the line names the option), 1 for a run that failed with good
+ * arguments (a table that cannot be read, an output that cannot be written, memory). */
+static void quit(int code, const char *fmt, va_list ap)
+{
+    fprintf(stderr, "cumulo-slab: error: ");
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "%s\n", code == 2 ? " (see --help)" : "");
+    finish(code);
+}
+
 static void die(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "cumulo-slab: error: ");
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, " (see --help)\n");
+    quit(2, fmt, ap);
     va_end(ap);
-#ifdef CU_SLAB_MPI
-    MPI_Finalize();
-#endif
-    exit(2);
+}
+
+static void fail(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    quit(1, fmt, ap);
+    va_end(ap);
 }
 
 static void usage(void)
 {
-    printf("usage: cumulo-slab (--tau T | --thickness METRES [--ke PER_METRE]) [--mu0 C] [--phase hg:G|iso|mie:FILE[:r|g|b]]\n"
-           "                   [--photons N] [--threads N] [--seed S] [--batches B] [--quiet]\n"
-           "                   [--report totals,radiance,orders,table] [--mu C1,C2,..] [--phi DEG]\n"
-           "                   [--depths N] [--thetav DEG,..] [--phiv DEG,..] [--out FILE]\n"
-           "Non-absorbing plane-parallel slab, collimated sun at cos(theta_L) = mu0. See tools/slab/README.md.\n");
+    printf("usage: cumulo-slab (--tau T | --thickness METRES [--ke PER_METRE]) [options]\n"
+           "Monte Carlo transport in a non-absorbing plane-parallel slab lit by a collimated sun at\n"
+           "cos(theta_L) = mu0.\n"
+           "See tools/slab/README.md for the geometry, the estimators and the output formats.\n"
+           "options:\n"
+           "  --tau T              optical thickness, (0, 1e4]\n"
+           "  --thickness METRES   geometric thickness instead; tau = ke * METRES\n"
+           "  --ke PER_METRE       extinction coefficient for --thickness (default 0.0905)\n"
+           "  --mu0 C              cosine of the sun's zenith angle, (0, 1] (default 1)\n"
+           "  --phase P            hg:G (-1 < G < 1), iso, or mie:FILE[:r|g|b], a chopped Mie table and its channel\n"
+           "                       (default hg:0.85; channel g)\n"
+           "  --photons N          photons to trace, 1..1e13 (default 1e5)\n"
+           "  --threads N          worker threads, 1..256 (default 2)\n"
+           "  --seed S             random seed, a non-negative integer (default 1)\n"
+           "  --batches B          batches for the standard errors, 2..100000 (default 100)\n"
+           "  --report LIST        comma-separated: totals, radiance, orders, table (default totals)\n"
+           "  --mu C1,C2,..        view cosines (0, 1] for the radiance report\n"
+           "  --phi DEG            relative azimuth for the radiance report, [0, 360) (default: azimuth average)\n"
+           "  --depths N           table: depths, equally spaced 0..t, 1..%d (default 11)\n"
+           "  --thetav DEG,..      table: view zenith angles, [0, 180] and not within 1 deg of 90\n"
+           "                       (default 0,20,40,..,180)\n"
+           "  --phiv DEG,..        table: view azimuths, [0, 180] (default 0,45,90,135,180)\n"
+           "  --out FILE           table: write it to FILE instead of stdout\n"
+           "  --quiet              no progress bar and no run summary on stderr\n"
+           "  -h, --help           this text\n"
+           "  --version            the version\n"
+           "Argument errors exit 2, failures while running (unreadable table, unwritable output) exit 1.\n",
+           CU_MAXGRID);
 }
 
 static double num(const char *opt, const char *v)
@@ -80,31 +125,47 @@ int main(int argc, char **argv)
     double thv[] = { 0, 20, 40, 60, 80, 100, 120, 140, 160, 180 }, phv[] = { 0, 45, 90, 135, 180 };
     c.nv = 10; memcpy(c.thv_deg, thv, sizeof thv);
     c.nphi = 5; memcpy(c.phv_deg, phv, sizeof phv);
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { usage(); return 0; }
-        if (!strcmp(a, "--quiet")) { quiet = 1; continue; }
-        if (a[0] != '-' || a[1] != '-') die("unexpected argument '%s'", a);
-        if (i + 1 >= argc) die("%s needs a value", a);
-        const char *v = argv[++i];
-        if (!strcmp(a, "--tau")) { tau = num(a, v); have_tau = 1; }
-        else if (!strcmp(a, "--thickness")) { thick = num(a, v); have_thick = 1; }
-        else if (!strcmp(a, "--ke")) ke = num(a, v);
-        else if (!strcmp(a, "--mu0")) mu0 = num(a, v);
-        else if (!strcmp(a, "--phase")) phase = v;
-        else if (!strcmp(a, "--photons")) photons = num(a, v);
-        else if (!strcmp(a, "--threads")) threads = (int)num(a, v);
-        else if (!strcmp(a, "--seed")) seed = num(a, v);
-        else if (!strcmp(a, "--batches")) batches = (int)num(a, v);
-        else if (!strcmp(a, "--report")) report = v;
-        else if (!strcmp(a, "--mu")) c.nmu = list(a, v, c.mu, CU_MAXMU);
-        else if (!strcmp(a, "--phi")) c.phi_deg = num(a, v);
-        else if (!strcmp(a, "--depths")) nd = (int)num(a, v);
-        else if (!strcmp(a, "--thetav")) c.nv = list(a, v, c.thv_deg, CU_MAXGRID);
-        else if (!strcmp(a, "--phiv")) c.nphi = list(a, v, c.phv_deg, CU_MAXGRID);
-        else if (!strcmp(a, "--out")) out = v;
-        else die("unknown option '%s'", a);
+    enum { O_TAU = 256, O_THICK, O_KE, O_MU0, O_PHASE, O_PHOTONS, O_THREADS, O_SEED, O_BATCHES, O_REPORT, O_MU, O_PHI,
+           O_DEPTHS, O_THETAV, O_PHIV, O_OUT, O_QUIET, O_VERSION };
+    static const struct option opts[] = {
+        {"tau", required_argument, NULL, O_TAU},         {"thickness", required_argument, NULL, O_THICK},
+        {"ke", required_argument, NULL, O_KE},           {"mu0", required_argument, NULL, O_MU0},
+        {"phase", required_argument, NULL, O_PHASE},     {"photons", required_argument, NULL, O_PHOTONS},
+        {"threads", required_argument, NULL, O_THREADS}, {"seed", required_argument, NULL, O_SEED},
+        {"batches", required_argument, NULL, O_BATCHES}, {"report", required_argument, NULL, O_REPORT},
+        {"mu", required_argument, NULL, O_MU},           {"phi", required_argument, NULL, O_PHI},
+        {"depths", required_argument, NULL, O_DEPTHS},   {"thetav", required_argument, NULL, O_THETAV},
+        {"phiv", required_argument, NULL, O_PHIV},       {"out", required_argument, NULL, O_OUT},
+        {"quiet", no_argument, NULL, O_QUIET},           {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, O_VERSION},       {NULL, 0, NULL, 0}};
+    opterr = 0;
+    for (int o; (o = getopt_long(argc, argv, ":h", opts, NULL)) != -1;) {
+        const char *a = argv[optind - 1], *v = optarg;
+        switch (o) {
+        case 'h': usage(); finish(0); break;
+        case O_VERSION: printf("cumulo-slab %s (%s)\n", CU_VERSION, CU_GIT_DESCRIBE); finish(0); break;
+        case ':': die("%s needs a value", a); break;
+        case '?': die("unknown option '%s'", a); break;
+        case O_QUIET: quiet = 1; break;
+        case O_TAU: tau = num("--tau", v); have_tau = 1; break;
+        case O_THICK: thick = num("--thickness", v); have_thick = 1; break;
+        case O_KE: ke = num("--ke", v); break;
+        case O_MU0: mu0 = num("--mu0", v); break;
+        case O_PHASE: phase = v; break;
+        case O_PHOTONS: photons = num("--photons", v); break;
+        case O_THREADS: threads = (int)num("--threads", v); break;
+        case O_SEED: seed = num("--seed", v); break;
+        case O_BATCHES: batches = (int)num("--batches", v); break;
+        case O_REPORT: report = v; break;
+        case O_MU: c.nmu = list("--mu", v, c.mu, CU_MAXMU); break;
+        case O_PHI: c.phi_deg = num("--phi", v); break;
+        case O_DEPTHS: nd = (int)num("--depths", v); break;
+        case O_THETAV: c.nv = list("--thetav", v, c.thv_deg, CU_MAXGRID); break;
+        case O_PHIV: c.nphi = list("--phiv", v, c.phv_deg, CU_MAXGRID); break;
+        case O_OUT: out = v; break;
+        }
     }
+    if (optind < argc) die("unexpected argument '%s'", argv[optind]);
     int want_tot = 0, want_rad = 0, want_ord = 0, want_tab = 0;
     {
         char buf[256];
@@ -152,8 +213,8 @@ int main(int argc, char **argv)
         size_t L = strlen(path);
         if (L > 2 && path[L - 2] == ':' && strchr("rgb", path[L - 1])) { ch = (int)(strchr("rgb", path[L - 1]) - "rgb"); path[L - 2] = 0; }
         char msg[512];
-        if (cu_phase_read_mie(&ph, path, ch, msg, sizeof msg)) die("%s", msg);
-        if (!(ph.f >= 0 && ph.f < 0.99)) die("chopped fraction f = %g out of range", ph.f);
+        if (cu_phase_read_mie(&ph, path, ch, msg, sizeof msg)) fail("%s", msg);
+        if (!(ph.f >= 0 && ph.f < 0.99)) fail("%s: chopped fraction f = %g out of range", path, ph.f);
     } else die("--phase must be hg:G, iso or mie:FILE[:r|g|b], got '%s'", phase);
     /* chopped-peak equivalence: the removed peak f is treated as unscattered, so the transported extinction is
      * (1-f) k_e with the renormalised chopped phase function (README, "Chopped Mie phase function") */
@@ -169,7 +230,7 @@ int main(int argc, char **argv)
     }
     if (c.photons < c.nbatch) c.nbatch = (int)(c.photons < 2 ? 2 : c.photons);
     cu_slab_result r;
-    if (cu_slab_run(&c, &r)) die("out of memory");
+    if (cu_slab_run(&c, &r)) fail("out of memory");
     if (g_rank_silent) { cu_slab_result_free(&r); cu_phase_free(&ph);
 #ifdef CU_SLAB_MPI
         MPI_Finalize();
@@ -224,7 +285,7 @@ int main(int argc, char **argv)
     }
     if (want_tab) {
         FILE *fo = stdout;
-        if (out && !(fo = fopen(out, "w"))) die("cannot write '%s': %s", out, strerror(errno));
+        if (out && !(fo = fopen(out, "w"))) fail("cannot write '%s': %s", out, strerror(errno));
         double mpt = c.metres_per_tau, thl = acos(mu0) * 180.0 / M_PI;
         fprintf(fo, "# cumulo-slab table: C = I/F_sun (sr^-1) at depth d toward s_V (Bouthors eq. 3.25); collector (eqs. 3.29-3.31)\n");
         fprintf(fo, "# tau=%.9g thickness_m=%.9g ke=%.9g f=%.6f mu0=%.9g phase=%s photons=%lld batches=%d seed=%llu\n",
