@@ -24,6 +24,7 @@ HEADLESS_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(LIB_LIBS)
 $(eval $(call test_program,test_scene,tests/core/test_scene.c $(CORE),,$(LIB_LIBS)))
 $(eval $(call test_program,test_phase,tests/core/test_phase.c $(CORE),,$(LIB_LIBS)))
 $(eval $(call test_program,test_math,tests/core/test_math.c $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
