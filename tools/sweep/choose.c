@@ -11,7 +11,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#define MAX_STEPS 24
 
 /* The next change to try from cur: the knob and value with the least predicted error increase per time saved, or
  * -1 in *bk when no change saves time. */
@@ -91,7 +90,7 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, doub
     unsigned char banned[SW_NKNOBS * SW_MAX_VALUES];
     memset(banned, 0, sizeof banned);
     *ntrail = 0;
-    for (int step = 0; step < MAX_STEPS; step++) {
+    for (int step = 0; step < SW_MAX_GREEDY; step++) {
         if (t_cur <= sw->budget_low)
             break;
         int bk, bv;

@@ -149,8 +149,10 @@ int sw_run(sweep *sw)
     cu_error e;
     if (sw_knobs_init(sw->baseline, &e))
         return fprintf(stderr, "%s\n", e.msg), 1;
-    if (sw_mkdirs(sw->out) || sw_mkdirs(sw->refdir))
-        return fprintf(stderr, "cumulo-sweep: cannot create %s or %s\n", sw->out, sw->refdir), 1;
+    const char *dirs[2] = {sw->out, sw->refdir};
+    for (int i = 0; i < 2; i++)
+        if (sw_mkdirs(dirs[i]))
+            return fprintf(stderr, "cumulo-sweep: cannot create %s: %s\n", dirs[i], strerror(errno)), 1;
     double t_start = sw_now_ms();
     const char *lp = getenv("LP_NUM_THREADS");
     printf("sweep: %d views, error at %dx%d against the path tracer at %d spp, time at %dx%d (median of %d frames "
@@ -188,7 +190,7 @@ int sw_run(sweep *sw)
     if (rc == 0)
         variant_rows(sw, "ALL", vars, vknob, vval, nv, agg, 0);
 
-    point med, low, high, trail[24];
+    point med, low, high, trail[SW_MAX_GREEDY];
     int ntrail = 0;
     if (rc == 0)
         rc = sw_choose_presets(sw, agg, vidx, agg[0].rel_rmse, &med, &low, trail, &ntrail);

@@ -26,6 +26,7 @@
 #define SW_MAX_SETS 24
 #define SW_NKNOBS 16   /* entries of the knob table (knobs.c checks) */
 #define SW_VALUE_LEN 24
+#define SW_MAX_GREEDY 24 /* greedy steps (combinations measured) at most */
 
 /* ---- knobs.c ---- */
 typedef struct knob {
@@ -129,7 +130,7 @@ int sw_measure_config(sweep *sw, const config *c, const char *kind, const char *
 
 /* ---- choose.c ---- */
 /* Greedy preset choice from the one-knob aggregates (vidx maps knob * SW_MAX_VALUES + value to a variant, -1 if not
- * measured); trail gets the greedy combinations measured (at most 24). */
+ * measured); trail gets the greedy combinations measured (at most SW_MAX_GREEDY). */
 int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, double e_high, point *med, point *low,
                       point *trail, int *ntrail);
 
