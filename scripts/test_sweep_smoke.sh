@@ -23,7 +23,8 @@ check "presets.txt has low, medium, high" \
     'grep -q "^low: --set" "$tmp/out/presets.txt" && grep -q "^medium: --set" "$tmp/out/presets.txt" && grep -q "^high: --set" "$tmp/out/presets.txt"'
 check "high is the default scene's settings" \
     'grep "^high:" "$tmp/out/presets.txt" | grep -q -- "--set quality.segments=5 --set quality.segment_ratio=1.6 "'
-check "sweep.md has the knob table" 'grep -q "^| quality.segments | 2 |" "$tmp/out/sweep.md"'
+check "sweep.md has the knob table" \
+    'grep -q "^| quality.segments | 2 |" "$tmp/out/sweep.md" && grep -q "(= the README defaults;" "$tmp/out/sweep.md"'
 check "pareto.dat has the reference noise" 'grep -q " 9 \"reference noise\"$" "$tmp/out/pareto.dat"'
 check "the reference is path-traced and cached" \
     'grep -q "^sweep: reference cumulus took" "$tmp/log" && [ $(ls "$tmp/ref"/cumulus-*.pfm | wc -l) -eq 2 ]'
@@ -40,7 +41,7 @@ sed 's/^segments = 5/segments = 4/' scenes/cumulus.scene >"$tmp/base.scene"
 "$bin" $tiny --baseline "$tmp/base.scene" --out "$tmp/out3" --ref-dir "$tmp/ref" >"$tmp/log3" 2>&1
 rc=$?
 check "--baseline: high follows the scene (segments = 4; 5 is a variant)" \
-    '[ $rc -eq 0 ] && grep "^high:" "$tmp/out3/presets.txt" | grep -q -- "--set quality.segments=4 " && grep -q "^| quality.segments | 5 |" "$tmp/out3/sweep.md" && grep -q "^variant,cumulus,quality.segments,5," "$tmp/out3/sweep.csv"'
+    '[ $rc -eq 0 ] && grep "^high:" "$tmp/out3/presets.txt" | grep -q -- "--set quality.segments=4 " && grep -q "^| quality.segments | 5 |" "$tmp/out3/sweep.md" && grep -q "^variant,cumulus,quality.segments,5," "$tmp/out3/sweep.csv" && grep -q "(= the settings of $tmp/base.scene;" "$tmp/out3/sweep.md"'
 
 "$bin" --help >"$tmp/o" 2>"$tmp/e"
 r=$?

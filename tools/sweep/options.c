@@ -24,7 +24,7 @@ static const char HELP[] =
     "  --out DIR            where the results go (default build/sweep)\n"
     "  --ref-dir DIR        cache of the path-traced references, kept between runs (default build/sweep/ref)\n"
     "  --baseline SCENE     the scene file whose settings are `high`, the point every variant changes one knob of\n"
-    "                       (default scenes/cumulus.scene, the default scene)\n"
+    "                       (default " SW_DEFAULT_BASELINE ", the default scene)\n"
     "  --size WxH           size the error is measured at, references included (default 160x120; --quick 80x60)\n"
     "  --time-size WxH      size frames are timed at (default 640x480; --quick 160x120)\n"
     "  --spp N              path-tracer samples per pixel of the references, 1..1000000 (default 256; --quick 16)\n"
@@ -136,7 +136,7 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
     sw->out = "build/sweep";
     sw->refdir = "build/sweep/ref";
     sw->plot = "scripts/sweep_plot.sh";
-    sw->baseline = "scenes/cumulus.scene";
+    sw->baseline = SW_DEFAULT_BASELINE;
     const char *scenes = NULL;
     int set_size = 0, set_tsize = 0, set_spp = 0, set_frames = 0, c;
     opterr = 0;

@@ -99,6 +99,7 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
     if (!f)
         return 1;
     const char *lp = getenv("LP_NUM_THREADS");
+    int default_high = strcmp(sw->baseline, SW_DEFAULT_BASELINE) == 0;
     fprintf(f, "<!-- written by `cumulo sweep` (make sweep); do not edit -->\n");
     fprintf(f, "Speed versus accuracy, %d views (%s", sw->nviews, sw->v[0].name);
     for (int s = 1; s < sw->nviews; s++)
@@ -110,10 +111,11 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
                "sun disk); relative RMSE = RMSE / mean reference radiance, mean over views; PSNR "
                "peak = the reference's 99th-percentile channel value; visible = share of pixels whose tone-mapped "
                "8-bit sRGB differs by more than %d/255 in a channel. Each knob is changed alone from `high` "
-               "(= the README defaults; quality.noise stays as each view sets it).\n\n",
+               "(= %s%s; quality.noise stays as each view sets it).\n\n",
             sw->tw, sw->th, sw->frames, sw->warmup,
             sw->sun_moving ? "sun moved every frame (the sun pass redone)" : "static sun: the sun pass is not in the frame",
-            lp ? lp : "(unset)", sw->spp, sw->ew, sw->eh, sw->threshold);
+            lp ? lp : "(unset)", sw->spp, sw->ew, sw->eh, sw->threshold, default_high ? "the README defaults" :
+            "the settings of ", default_high ? "" : sw->baseline);
     fprintf(f, "| knob | value | time ratio | time ratio, fastest frames | rel. RMSE | Δ rel. RMSE "
                "| rel. RMSE, PT noise removed | PSNR dB | visible %% | Δ rel. RMSE per −0.1 time |\n");
     fprintf(f, "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");

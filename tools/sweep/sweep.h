@@ -26,6 +26,7 @@
 #define SW_MAX_SETS 24
 #define SW_NKNOBS 16   /* entries of the knob table (knobs.c checks) */
 #define SW_VALUE_LEN 24
+#define SW_DEFAULT_BASELINE "scenes/cumulus.scene" /* the default scene: its settings are `high` */
 #define SW_MAX_GREEDY 24 /* greedy steps (combinations measured) at most */
 
 /* ---- knobs.c ---- */
