@@ -153,9 +153,11 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         case ':':
             return bad("%s needs a value (see --help)", argv[optind - 1]);
         case '?':
-            if (optopt)
+            if (optopt > 0 && optopt < O_SCENES) /* a short option */
                 return bad("unknown option '-%c' (see --help)", optopt);
-            return bad("unknown option '%s' (see --help)", argv[optind - 1]);
+            if (optopt == 0)
+                return bad("unknown option '%s' (see --help)", argv[optind - 1]);
+            return bad("'%s': the option takes no value (see --help)", argv[optind - 1]);
         case O_SCENES:
             if (!*v)
                 return bad("--scenes expects a comma-separated list of scenes");
