@@ -712,6 +712,28 @@ int pt_render(const pt_ctx *c, const pt_render_opts *o, float *mean, float *se, 
     return 0;
 }
 
+int pt_render_scene(const cu_scene *s, const char *data_dir, const pt_render_opts *o, float *mean, float *se,
+                    pt_counters *k, cu_error *err)
+{
+    cu_scene *sc = malloc(sizeof *sc);
+    pt_ctx *c = malloc(sizeof *c);
+    int rc = 1;
+    if (!sc || !c) {
+        fail(err, "%s", "path tracer: out of memory");
+    } else {
+        *sc = *s;
+        sc->width = o->width;
+        sc->height = o->height;
+        if (pt_ctx_init(c, sc, data_dir, err) == 0) {
+            rc = pt_render(c, o, mean, se, k, err);
+            pt_ctx_free(c);
+        }
+    }
+    free(c);
+    free(sc);
+    return rc;
+}
+
 /* ---------------------------------------------------------------- density dump */
 
 int pt_dump_density(const pt_ctx *c, const char *path, int nx, int ny, int nz, uint32_t noise_seed, cu_error *err)

@@ -110,6 +110,12 @@ typedef struct pt_render_opts {
 } pt_render_opts;
 /* Renders mean and standard error of the mean (rgb floats, top row first; se may be NULL). Returns 0 or 1. */
 int pt_render(const pt_ctx *c, const pt_render_opts *o, float *mean, float *se, pt_counters *k, cu_error *err);
+/* The whole job for a program that links the path tracer (the sweep): a context for scene s with the integrator's
+ * defaults (max depth, forward-peak guide: what cumulo-pt runs without options), the camera at o's size (the scene's
+ * output size is ignored), pt_render, and the context freed. data_dir holds mie_cloud.tbl. Returns 0, or 1 with a
+ * message. */
+int pt_render_scene(const cu_scene *s, const char *data_dir, const pt_render_opts *o, float *mean, float *se,
+                    pt_counters *k, cu_error *err);
 
 /* Writes k_e on an nx*ny*nz grid of voxel centres over the cloud's local AABB: raw float32 little-endian, x
  * fastest, plus a text header at path + ".txt". */

@@ -1,22 +1,35 @@
 # tools/sweep/sweep.mk: `cumulo-sweep`, the speed/accuracy sweep against the path tracer (README "Performance"), and
 # `make sweep`, which runs it with its defaults into build/sweep/ (references cached in build/sweep/ref/) and copies
 # the plot, the table, the presets and the CSV to docs/. Not part of `make check`. SWEEP_ARGS adds options.
-SWEEP_SRCS := tools/sweep/main.c tools/sweep/sweep.c
+# The sweep links the path tracer (tools/pathtrace/pt.o) and renders its references in-process.
+SWEEP_SRCS := $(addprefix tools/sweep/,main.c options.c knobs.c reference.c metrics.c measure.c choose.c report.c \
+              sweep.c)
 SWEEP_OBJS := $(SWEEP_SRCS:%.c=$(B)/obj/%.o)
-CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp $(PLATFORM_CPPFLAGS) -I$(B)/gen $(LIB_CFLAGS)
+CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp -Itools/pathtrace $(PLATFORM_CPPFLAGS) -I$(B)/gen \
+                $(LIB_CFLAGS)
 $(eval $(call flags_rule,sweep,$(CC) $(CFLAGS_SWEEP)))
 
-$(B)/obj/tools/sweep/%.o: tools/sweep/%.c $(B)/flags/sweep
+$(B)/obj/tools/sweep/%.o: tools/sweep/%.c $(B)/flags/sweep | $(B)/gen/version.h
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS_SWEEP) -c $< -o $@
 
-$(B)/cumulo-sweep: $(SWEEP_OBJS) $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a
-	$(CC) -o $@ $(SWEEP_OBJS) $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a $(PLATFORM_LIBS) $(LIB_LIBS)
+# The reference cache key includes a checksum of the code that computes a reference: the path tracer's object and
+# the core's (what build/cumulo-pt is made of, less its command line). Rewritten only when it changes.
+SWEEP_PT_CODE := $(B)/obj/tools/pathtrace/pt.o $(CORE_OBJS)
+$(B)/gen/sweep_pt_code.h: $(SWEEP_PT_CODE)
+	@mkdir -p $(@D)
+	@printf '#define SW_PT_CODE "%s"\n' "$$(cat $(SWEEP_PT_CODE) | cksum | tr ' ' '-')" >$@.tmp; \
+	  if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
+$(B)/obj/tools/sweep/reference.o: $(B)/gen/sweep_pt_code.h
+
+SWEEP_LINK := $(SWEEP_OBJS) $(B)/obj/tools/pathtrace/pt.o $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a
+$(B)/cumulo-sweep: $(SWEEP_LINK)
+	$(CC) -o $@ $(SWEEP_LINK) $(PLATFORM_LIBS) $(LIB_LIBS) -lpthread
 ALL_BINS += $(B)/cumulo-sweep
 
 SWEEP_DIR  ?= $(B)/sweep
 SWEEP_ARGS ?=
-sweep: $(B)/cumulo-sweep $(B)/cumulo-pt
+sweep: $(B)/cumulo-sweep
 	@command -v gnuplot >/dev/null 2>&1 || echo "sweep: gnuplot not found: no pareto.png will be drawn (make deps-plots); the CSV and tables are still written"
 	@start=$$(date +%s); \
 	$(TEST_ENV) $(B)/cumulo-sweep --out $(SWEEP_DIR) $(SWEEP_ARGS) || exit $$?; \

@@ -1,0 +1,135 @@
+/* tests/core/test_tonemap.c: src/core/tonemap.c, the CPU twin of shaders_gles/tonemap.frag: the shader's source carries
+ * the same formula and constants, the curve matches values worked out by hand from the shader's formula, and the 8-bit
+ * output agrees with the formula evaluated in single precision (GLSL highp) over a range of radiances. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "tonemap.h"
+
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
+static char *read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *b = calloc(1, 65537);
+    size_t n = b ? fread(b, 1, 65536, f) : 0;
+    fclose(f);
+    if (b)
+        b[n] = 0;
+    return b;
+}
+
+/* The shader (run from the source tree, as every test) writes exactly the formula tonemap.h names. */
+static void test_shader_has_the_same_curve(void **st)
+{
+    (void)st;
+    char *src = read_text("shaders_gles/tonemap.frag");
+    assert_non_null(src);
+    const char *want[] = {
+        "max(c.rgb * u_exposure / u_white, vec3(0.0))",
+        "clamp(x * (" STR(CU_TONEMAP_A) " * x + " STR(CU_TONEMAP_B) ") / (x * (" STR(CU_TONEMAP_C) " * x + " STR(
+            CU_TONEMAP_D) ") + " STR(CU_TONEMAP_E) "), 0.0, 1.0)",
+        "mix(" STR(CU_SRGB_LINEAR) " * c, " STR(CU_SRGB_SCALE) " * pow(c, vec3(1.0 / " STR(CU_SRGB_GAMMA) ")) - " STR(
+            CU_SRGB_OFFSET) ", step(vec3(" STR(CU_SRGB_KNEE) "), c))",
+        "o_color = vec4(srgb(t), 1.0);",
+    };
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
+        if (!strstr(src, want[i]))
+            print_error("shaders_gles/tonemap.frag lacks: %s\n", want[i]);
+        assert_non_null(strstr(src, want[i]));
+    }
+    free(src);
+}
+
+/* Points worked out from the shader's formula (in double precision, independently of tonemap.c). */
+static void test_curve_at_points(void **st)
+{
+    (void)st;
+    static const struct {
+        double x, aces, srgb;
+        int q;
+    } pts[] = {
+        {0.001, 0.0002312357784839482, 0.0029875662580126105, 1},
+        {0.01, 0.003770279794447903, 0.04813548571460533, 12},
+        {0.1, 0.1258396775638155, 0.38981196243241095, 99},
+        {0.6, 0.6732904734073641, 0.839684998176242, 214},
+        {1.0, 0.8037974683544302, 0.9082304956696972, 232},
+        {2.0, 0.914855072463768, 0.961598001176574, 245},
+        {4.0, 0.9734171097148379, 0.9882227102346403, 252},
+        {7.0, 0.9988649262202043, 0.9995008751981406, 255},
+        {16.0, 1.0, 1.0, 255},
+    };
+    for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+        assert_true(fabs(cu_tonemap_aces(pts[i].x) - pts[i].aces) < 1e-12);
+        assert_true(fabs(cu_tonemap_srgb(pts[i].aces) - pts[i].srgb) < 1e-12);
+        /* exposure 0.06 and a white of 0.5: radiance x * 0.5 / 0.06 gives the exposed value x */
+        double L = pts[i].x * 0.5 / 0.06;
+        assert_true(fabs(cu_tonemap_channel(L, 0.06, 0.5) - pts[i].srgb) < 1e-12);
+        assert_int_equal(cu_tonemap8(L, 0.06, 0.5), pts[i].q);
+    }
+    /* ends: black, negative and NaN radiance are black; the curve saturates to 255 */
+    assert_int_equal(cu_tonemap8(0.0, 0.06, 1.0), 0);
+    assert_int_equal(cu_tonemap8(-5.0, 0.06, 1.0), 0);
+    assert_int_equal(cu_tonemap8(nan(""), 0.06, 1.0), 0);
+    assert_int_equal(cu_tonemap8(1e9, 0.06, 1.0), 255);
+    assert_true(fabs(cu_tonemap_srgb(1.0) - 1.0) < 1e-12);
+    /* the sRGB knee is continuous to 1e-7 */
+    double k = CU_SRGB_KNEE;
+    assert_true(fabs(CU_SRGB_LINEAR * k - (CU_SRGB_SCALE * pow(k, 1.0 / CU_SRGB_GAMMA) - CU_SRGB_OFFSET)) < 1e-6);
+    unsigned char px[3];
+    const float rgb[3] = {1.0f / 0.06f, 2.0f / 0.06f, 0.0f};
+    const double white[3] = {1.0, 1.0, 1.0};
+    cu_tonemap_rgb8(rgb, 0.06, white, px);
+    assert_int_equal(px[0], 232);
+    assert_int_equal(px[1], 245);
+    assert_int_equal(px[2], 0);
+}
+
+/* The shader's maths in single precision, as a GLES highp float evaluates it, quantised like the RGBA8 target. */
+static int shader8(float L, float exposure, float white)
+{
+    float x = L * exposure / white;
+    x = x > 0.0f ? x : 0.0f;
+    float t = x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f);
+    t = t < 0.0f ? 0.0f : t > 1.0f ? 1.0f : t;
+    float s = t < 0.0031308f ? 12.92f * t : 1.055f * powf(t, 1.0f / 2.4f) - 0.055f;
+    int q = (int)floorf(s * 255.0f + 0.5f);
+    return q < 0 ? 0 : q > 255 ? 255 : q;
+}
+
+static void test_matches_single_precision_shader(void **st)
+{
+    (void)st;
+    int differ = 0, worst = 0;
+    for (int i = 0; i <= 4000; i++) {
+        double L = 1e-4 * pow(10.0, i / 500.0); /* 1e-4 .. 1e4 kcd/m^2 */
+        for (int w = 0; w < 3; w++) {
+            double white = 0.8 + 0.2 * w;
+            int a = cu_tonemap8(L, 0.06, white), b = shader8((float)L, 0.06f, (float)white);
+            int d = abs(a - b);
+            differ += d != 0;
+            worst = d > worst ? d : worst;
+        }
+    }
+    /* float rounding may move a value across a level boundary, never further */
+    assert_true(worst <= 1);
+    assert_true(differ < 40);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_shader_has_the_same_curve),
+        cmocka_unit_test(test_curve_at_points),
+        cmocka_unit_test(test_matches_single_precision_shader),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,135 @@
+/* tools/sweep/choose.c: choosing the medium and low presets from the measurements.
+ *
+ * Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
+ * time saved (prediction: the one-at-a-time deltas, relative to the value the knob has now), re-measure the
+ * combination on every view, until the measured time ratio is within the budget. A change that, measured, does not
+ * save at least 1 % of high's time is taken back and not tried again (the first run kept ms.sky_light = off, which
+ * cost 0.12 in error and saved nothing once combined). Each preset is then the lowest-error measured point (one-knob
+ * variant or greedy combination) within its budget; if none is, the fastest measured point (reported as over
+ * budget). Only knob_preset_eligible() values are taken. */
+#include "sweep.h"
+#include <stdio.h>
+#include <string.h>
+
+
+/* The next change to try from cur: the knob and value with the least predicted error increase per time saved, or
+ * -1 in *bk when no change saves time. */
+static void best_change(const config *cur, const result *single_agg, const int *vidx, double e_high,
+                        const unsigned char *banned, int *bk, int *bv)
+{
+    double best = 1e300;
+    *bk = *bv = -1;
+    for (int k = 0; k < SW_NKNOBS; k++)
+        for (int j = 0; j < sw_knobs[k].nvals; j++) {
+            if (j == cur->v[k] || vidx[k * SW_MAX_VALUES + j] < 0 || !knob_preset_eligible(k, j) ||
+                banned[k * SW_MAX_VALUES + j])
+                continue;
+            int cj = cur->v[k];
+            const result *a = &single_agg[vidx[k * SW_MAX_VALUES + j]];
+            double ta = a->time_ratio, ea = a->rel_rmse, tc = 1.0, ec = e_high;
+            if (cj != sw_knobs[k].high) {
+                const result *b = &single_agg[vidx[k * SW_MAX_VALUES + cj]];
+                tc = b->time_ratio;
+                ec = b->rel_rmse;
+            }
+            double dt = ta - tc, de = ea - ec;
+            if (dt > -0.01) /* saves under 1 % of high's time: noise */
+                continue;
+            double score = (de > 0 ? de : de * 1e-3) / -dt;
+            if (score < best) {
+                best = score;
+                *bk = k;
+                *bv = j;
+            }
+        }
+}
+
+/* The lowest-error measured point within budget (or the fastest one, *found = 0). */
+static point pick(const result *single_agg, const int *vidx, double e_high, const point *trail, int ntrail,
+                  double budget, int *found, double *fastest)
+{
+    point best = {0}, fast = {0};
+    *found = 0;
+    *fastest = 1e300;
+    for (int i = -1; i < ntrail + SW_NKNOBS * SW_MAX_VALUES; i++) {
+        point cand;
+        if (i < 0) {
+            config_high(&cand.c);
+            memset(&cand.agg, 0, sizeof cand.agg);
+            cand.agg.time_ratio = 1.0;
+            cand.agg.rel_rmse = e_high;
+        } else if (i < ntrail) {
+            cand = trail[i];
+        } else {
+            int k = (i - ntrail) / SW_MAX_VALUES, j = (i - ntrail) % SW_MAX_VALUES;
+            if (k >= SW_NKNOBS || j >= sw_knobs[k].nvals || vidx[k * SW_MAX_VALUES + j] <= 0 ||
+                !knob_preset_eligible(k, j))
+                continue;
+            config_high(&cand.c);
+            cand.c.v[k] = j;
+            cand.agg = single_agg[vidx[k * SW_MAX_VALUES + j]];
+        }
+        if (cand.agg.time_ratio <= budget && (!*found || cand.agg.rel_rmse < best.agg.rel_rmse)) {
+            best = cand;
+            *found = 1;
+        }
+        if (cand.agg.time_ratio < *fastest) {
+            *fastest = cand.agg.time_ratio;
+            fast = cand;
+        }
+    }
+    return *found ? best : fast;
+}
+
+int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, double e_high, point *med, point *low,
+                      point *trail, int *ntrail)
+{
+    config cur;
+    config_high(&cur);
+    double t_cur = 1.0, e_cur = e_high;
+    unsigned char banned[SW_NKNOBS * SW_MAX_VALUES];
+    memset(banned, 0, sizeof banned);
+    *ntrail = 0;
+    for (int step = 0; step < SW_MAX_GREEDY; step++) {
+        if (t_cur <= sw->budget_low)
+            break;
+        int bk, bv;
+        best_change(&cur, single_agg, vidx, e_high, banned, &bk, &bv);
+        if (bk < 0) {
+            printf("sweep: presets: no single-knob change left that saves time (at %.2fx)\n", t_cur);
+            break;
+        }
+        int was = cur.v[bk];
+        cur.v[bk] = bv;
+        char label[600], d[512];
+        config_diff(&cur, d, sizeof d, " ");
+        snprintf(label, sizeof label, "greedy%d", step + 1);
+        printf("sweep: presets: step %d: %s=%s -> %s\n", step + 1, sw_knobs[bk].name, sw_knobs[bk].vals[bv], d);
+        result agg;
+        if (sw_measure_config(sw, &cur, "greedy", label, &agg))
+            return 1;
+        trail[*ntrail].c = cur;
+        trail[*ntrail].agg = agg;
+        (*ntrail)++;
+        printf("sweep: presets: step %d measured: time %.3fx, relRMSE %.4f\n", step + 1, agg.time_ratio, agg.rel_rmse);
+        if (agg.time_ratio > t_cur - 0.01 && agg.rel_rmse > e_cur) {
+            printf("sweep: presets: step %d saved no time and cost accuracy: taken back\n", step + 1);
+            cur.v[bk] = was;
+            banned[bk * SW_MAX_VALUES + bv] = 1;
+            continue;
+        }
+        t_cur = agg.time_ratio;
+        e_cur = agg.rel_rmse;
+    }
+    point *pp[2] = {med, low};
+    double budget[2] = {sw->budget_med, sw->budget_low};
+    for (int q = 0; q < 2; q++) {
+        int found;
+        double fastest;
+        *pp[q] = pick(single_agg, vidx, e_high, trail, *ntrail, budget[q], &found, &fastest);
+        if (!found)
+            printf("sweep: presets: nothing measured within %.2fx; taking the fastest point (%.3fx)\n", budget[q],
+                   fastest);
+    }
+    return 0;
+}

@@ -1,0 +1,150 @@
+/* tools/sweep/sweep.h: what the parts of cumulo-sweep share (README "Speed against accuracy").
+ *
+ * For every view (scene file) and every variant (one knob changed from `high`, or a preset) the sweep measures
+ *   - time: median wall-clock frame time (incl. glFinish, as `cumulo bench`) at the timing size, static sun, as a
+ *     ratio to `high` timed in the same session (high is timed three times in each view's round, frames pooled);
+ *   - error against the reference path tracer's image (tools/pathtrace/pt.c, linked in) of the same view with the
+ *     high settings, at the error size: RMSE and PSNR on linear RGB (peak = the reference's 99th-percentile channel
+ *     value), max abs error, relative RMSE (RMSE / mean reference radiance) and the share of pixels whose tone-mapped
+ *     8-bit sRGB values (src/core/tonemap.c with the scene's exposure and white balance) differ by more than a
+ *     threshold.
+ * Then it picks the presets greedily and writes DIR/sweep.csv, DIR/sweep.md, DIR/presets.txt and DIR/pareto.dat
+ * (plotted by scripts/sweep_plot.sh into DIR/pareto.png).
+ *
+ * The parts: options.c (command line, views), knobs.c (the knob table; `high` read from the baseline scene),
+ * reference.c (path-traced references, cached), metrics.c (error of one image, aggregates), measure.c (timing and
+ * rendering one view's variants), choose.c (preset choice), report.c (the output files), sweep.c (the run). */
+#ifndef SW_SWEEP_H
+#define SW_SWEEP_H
+#include "cumulo.h"
+#include "image.h"
+#include <stddef.h>
+#include <stdio.h>
+
+#define SW_MAX_SCENES 16
+#define SW_MAX_VALUES 8
+#define SW_MAX_SETS 24
+#define SW_NKNOBS 16   /* entries of the knob table (knobs.c checks) */
+#define SW_VALUE_LEN 24
+#define SW_DEFAULT_BASELINE "scenes/cumulus.scene" /* the default scene: its settings are `high` */
+#define SW_MAX_GREEDY 24 /* greedy steps (combinations measured) at most */
+
+/* ---- knobs.c ---- */
+typedef struct knob {
+    const char *name;   /* scene key, or "output.scale" */
+    int high;           /* index of the baseline value in vals */
+    int nvals;
+    char vals[SW_MAX_VALUES][SW_VALUE_LEN];
+    int quick[SW_MAX_VALUES]; /* 1: measured in --quick */
+} knob;
+/* The knob table, valid after sw_knobs_init. */
+extern knob sw_knobs[SW_NKNOBS];
+/* Fills sw_knobs: every knob's `high` value is the one the baseline scene file has (read through cu_scene_load and
+ * the cu_scene struct); a value not among the listed alternatives is added. 0, or 1 with a message. */
+int sw_knobs_init(const char *baseline_path, cu_error *err);
+int sw_knob_is(int k, const char *name);
+
+/* A configuration: one value index per knob. */
+typedef struct config {
+    int v[SW_NKNOBS];
+} config;
+void config_high(config *c);
+/* --set list ("key=value", all knobs given explicitly) and resolution scale of a configuration; returns the count. */
+int config_sets(const config *c, char sets[][64], double *scale);
+/* "knob=value" changes from high, joined with sep ("high" when none). */
+void config_diff(const config *c, char *out, size_t len, const char *sep);
+/* "--set a=b --set c=d ..." (and a note on the scale), as presets.txt writes it. */
+void config_sets_line(const config *c, char *out, size_t len);
+/* Whether value j of knob k may be part of a preset (it changes precision, not the scene's content). */
+int knob_preset_eligible(int k, int j);
+
+/* ---- the run's state ---- */
+typedef struct result {
+    double time_ms, time_ratio;
+    double tmin_ms, tmin_ratio; /* fastest frame: on a loaded machine the least disturbed estimate */
+    double rmse, psnr, peak, maxabs, visible, mean_ref, rel_rmse;
+    double rel_bias;       /* sqrt(max(0, MSE - mean sigma^2 of the reference)) / mean reference: PT noise removed */
+    int ok;
+} result;
+
+typedef struct view {
+    char path[512], name[128];
+    cu_image ref;          /* linear RGB */
+    double pt_noise;       /* sqrt(mean sigma^2) of the reference: its expected contribution to an RMSE */
+    double pt_mean_se;     /* mean standard error per pixel and channel */
+    double pt_rel_noise;   /* pt_noise / mean reference radiance */
+    double pt_var;         /* mean sigma^2 */
+    double exposure, white[3];
+    double clip[3];        /* radiance the display curve saturates at (exposure * L / white = 16): the sun disk */
+    int noise_on;
+} view;
+
+typedef struct sweep {
+    int ew, eh, tw, th;    /* error and timing sizes */
+    int spp, frames, warmup, quick, threshold, pt_threads;
+    int sun_moving;        /* --sun-every-frame: time frames that redo the sun pass, as `cumulo bench` does */
+    int refs_only;
+    double budget_med, budget_low;
+    const char *out, *refdir, *plot, *baseline;
+    int nviews;
+    view v[SW_MAX_SCENES];
+    FILE *csv;
+} sweep;
+
+typedef struct point {
+    config c;
+    result agg;
+} point;
+
+/* ---- options.c ---- */
+/* Parses the command line into sw (defaults first). Returns 0 to run, 2 after printing a one-line usage error, or
+ * -1 after printing --help or --version (exit 0). */
+int sw_parse_options(sweep *sw, int argc, char **argv);
+
+/* ---- sweep.c: small helpers ---- */
+double sw_now_ms(void);
+int sw_cmp_double(const void *a, const void *b);
+double sw_median(double *t, int n); /* sorts t */
+/* The tables' folder: $CUMULO_DATA_DIR, ./data in a source tree, else NULL (the library's default). */
+const char *sw_data_dir(void);
+int sw_mkdirs(const char *path);
+/* The whole sweep after option parsing: 0, or 1 on a runtime failure (message printed). */
+int sw_run(sweep *sw);
+
+/* ---- reference.c ---- */
+/* Renders with the path tracer (or finds in sw->refdir) the reference of v with the high settings, and its noise. */
+int sw_load_reference(sweep *sw, view *v);
+
+/* ---- metrics.c ---- */
+/* Errors of img (linear RGB at the error size) against v's reference. */
+void sw_compare(const sweep *sw, const view *v, const float *img, result *r);
+/* Bilinear upsampling of a w x h RGB image (top row first) to W x H (pixel centres aligned). */
+void sw_upsample(const float *src, int w, int h, float *dst, int W, int H);
+/* Means over views of result idx (max_abs: the max). */
+void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg);
+
+/* ---- measure.c ---- */
+/* Measures cfg[0..n-1] (cfg[0] = high, the time reference) on one view. */
+int sw_measure_view(sweep *sw, view *v, const config *cfg, int n, result *res);
+/* One configuration on every view (high re-timed alongside); per-view and ALL rows go to the CSV under kind. */
+int sw_measure_config(sweep *sw, const config *c, const char *kind, const char *label, result *agg);
+
+/* ---- choose.c ---- */
+/* Greedy preset choice from the one-knob aggregates (vidx maps knob * SW_MAX_VALUES + value to a variant, -1 if not
+ * measured); trail gets the greedy combinations measured (at most SW_MAX_GREEDY). */
+int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, double e_high, point *med, point *low,
+                      point *trail, int *ntrail);
+
+/* ---- report.c ---- */
+/* sweep.csv: the two header lines, then rows. */
+void sw_csv_header(sweep *sw);
+void sw_csv_row(sweep *sw, const char *kind, const char *scene, const char *knob, const char *value, const config *c,
+                const result *r, double pt_rel_noise);
+/* presets.txt, pareto.dat and sweep.md; each 0, or 1 with a message. presets[] = low, medium, high. */
+int sw_write_presets(const sweep *sw, const point *const presets[3]);
+int sw_write_pareto(const sweep *sw, const result *agg, const int *vknob, const int *vval, int nv, const point *trail,
+                    int ntrail, const point *const presets[3]);
+int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int *vval, int nv,
+                const point *const presets[3], result *const *per_view);
+extern const char *const sw_preset_names[3]; /* low, medium, high */
+#endif
