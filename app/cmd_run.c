@@ -8,7 +8,6 @@
 #include "sun_control.h"
 #include <errno.h>
 #include <getopt.h>
-#include <poll.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -20,21 +19,17 @@
 
 static volatile sig_atomic_t quit_signal;
 
-static void on_signal(int sig)
-{
-    quit_signal = sig;
-}
+static void on_signal(int sig) { quit_signal = sig; }
 
 /* What the command line asked for; all of it is checked before anything opens, so a typo costs no mode switch. */
 typedef struct run_args {
     cli_opts o;
     cu_display_opts dopt;
     cu_input_set inputs;
-    int no_stdin, knob_el, have_step, have_accel;
+    int no_stdin;
     long frames_max;
-    double step, accel;
     const char *el_range, *az_range;
-    cu_sun_limits lim;
+    cu_sun_ctl sun;                 /* the knob settings; the sun itself comes from the scene */
 } run_args;
 
 typedef struct run_session {
@@ -43,15 +38,7 @@ typedef struct run_session {
     cu_scene *scene;
     cu_renderer *r;
     int verbose;                    /* the log callback's user data */
-    int headless;
 } run_session;
-
-/* The actions one poll of the inputs collected, each with the name of the input it came from. */
-typedef struct run_actions {
-    cu_action acts[MAX_ACTIONS];
-    const char *source[MAX_ACTIONS];
-    int n;
-} run_actions;
 
 static void list_display_backends(FILE *f)
 {
@@ -77,12 +64,8 @@ static void usage(FILE *f)
     fprintf(f, "inputs in this build:");
     for (int i = 0; cu_input_backends[i]; i++)
         fprintf(f, " %s", cu_input_backends[i]->name);
-    fprintf(f, "\n");
-    for (int i = 0; cu_input_backends[i]; i++)
-        if (cu_input_backends[i]->lib)
-            fprintf(f, "%s: %s\n", cu_input_backends[i]->name, cu_input_backends[i]->lib);
-    if (!cu_input_find(CU_INPUT_GPIO))
-        fprintf(f, "gpio: not built (no libgpiod)\n");
+    const cu_input_backend *gpio = cu_input_find(CU_INPUT_GPIO);
+    fprintf(f, "\ngpio: %s\n", gpio ? gpio->lib : "not built (no libgpiod)");
 }
 
 static uint64_t now_ns(void)
@@ -105,31 +88,17 @@ static void *getproc(void *user, const char *name)
     return s->be->get_proc_address(s->disp, name);
 }
 
-static void input_log(void *user, const char *msg)
-{
-    (void)user;
-    fprintf(stderr, "%s\n", msg);
-}
+static void input_log(void *user, const char *msg) { (void)user; fprintf(stderr, "%s\n", msg); }
 
-static int parse_int(const char *opt, const char *v, long lo, long hi, long *out)
+/* A number in lo..hi (whole: an integer); 0, or 1 after printing what the option expects. */
+static int parse_number(const char *opt, const char *v, double lo, double hi, int whole, double *out)
 {
     char *end;
     errno = 0;
-    long x = strtol(v, &end, 10);
-    if (end == v || *end || errno || x < lo || x > hi) {
-        fprintf(stderr, "cumulo: %s expects a whole number in %ld..%ld, got '%s'\n", opt, lo, hi, v);
-        return 1;
-    }
-    *out = x;
-    return 0;
-}
-
-static int parse_double(const char *opt, const char *v, double lo, double hi, double *out)
-{
-    char *end;
-    double x = strtod(v, &end);
-    if (end == v || *end || !(x >= lo && x <= hi)) {
-        fprintf(stderr, "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
+    double x = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
+    if (end == v || *end || (whole && errno) || !(x >= lo && x <= hi)) {
+        fprintf(stderr, whole ? "cumulo: %s expects a whole number in %.0f..%.0f, got '%s'\n"
+                              : "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
         return 1;
     }
     *out = x;
@@ -139,54 +108,54 @@ static int parse_double(const char *opt, const char *v, double lo, double hi, do
 enum { OPT_COMMON = 256, OPT_FULLSCREEN, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
        OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE };
 
+#define ARG(name, id) { name, required_argument, NULL, id }
+#define FLAG(name, id) { name, no_argument, NULL, id }
 static const struct option long_opts[] = {
-    { "help", no_argument, NULL, 'h' },             { "verbose", no_argument, NULL, 'v' },
-    { "size", required_argument, NULL, OPT_COMMON }, { "backend", required_argument, NULL, OPT_COMMON },
-    { "platform", required_argument, NULL, OPT_COMMON }, { "set", required_argument, NULL, OPT_COMMON },
-    { "fullscreen", no_argument, NULL, OPT_FULLSCREEN }, { "no-stdin", no_argument, NULL, OPT_NO_STDIN },
-    { "frames", required_argument, NULL, OPT_FRAMES }, { "mode", required_argument, NULL, OPT_MODE },
-    { "device", required_argument, NULL, OPT_DEVICE }, { "input", required_argument, NULL, OPT_INPUT },
-    { "knob", required_argument, NULL, OPT_KNOB },     { "step", required_argument, NULL, OPT_STEP },
-    { "accel", required_argument, NULL, OPT_ACCEL },
-    { "sun-elevation-range", required_argument, NULL, OPT_EL_RANGE },
-    { "sun-azimuth-range", required_argument, NULL, OPT_AZ_RANGE },
-    { NULL, 0, NULL, 0 },
+    FLAG("help", 'h'), FLAG("verbose", 'v'), FLAG("fullscreen", OPT_FULLSCREEN), FLAG("no-stdin", OPT_NO_STDIN),
+    ARG("size", OPT_COMMON), ARG("backend", OPT_COMMON), ARG("platform", OPT_COMMON), ARG("set", OPT_COMMON),
+    ARG("frames", OPT_FRAMES), ARG("mode", OPT_MODE), ARG("device", OPT_DEVICE), ARG("input", OPT_INPUT),
+    ARG("knob", OPT_KNOB), ARG("step", OPT_STEP), ARG("accel", OPT_ACCEL), ARG("sun-elevation-range", OPT_EL_RANGE),
+    ARG("sun-azimuth-range", OPT_AZ_RANGE), { NULL, 0, NULL, 0 },
 };
 
 /* One option and its value; 0, or 1 after printing why the value is wrong. */
 static int take_option(run_args *a, int c, const char *name, char *v)
 {
-    char err[512];
+    char err[512], *common[2] = { (char *)name, v }; /* session.c checks its options in an argv */
+    double x;
+    int i = 0;
     switch (c) {
     case 'v': a->o.verbose = 1; return 0;
     case OPT_FULLSCREEN: a->dopt.fullscreen = 1; return 0;
     case OPT_NO_STDIN: a->no_stdin = 1; return 0;
     case OPT_MODE: a->dopt.mode = v; return 0;
     case OPT_DEVICE: a->dopt.device = v; return 0;
-    case OPT_FRAMES: return parse_int(name, v, 1, 2000000000L, &a->frames_max);
-    case OPT_STEP: a->have_step = 1; return parse_double(name, v, 0.001, 90.0, &a->step);
-    case OPT_ACCEL: a->have_accel = 1; return parse_double(name, v, 0.0, 100.0, &a->accel);
-    case OPT_COMMON: { /* session.c owns these options' checks; it reads them from an argv */
-        char *common[2] = { (char *)name, v };
-        int i = 0;
-        return cli_common_option(&a->o, 2, common, &i) < 0;
-    }
-    case OPT_INPUT:
-        if (cu_input_set_add(&a->inputs, v, err, sizeof err)) {
-            fprintf(stderr, "cumulo: %s\n", err);
+    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, 0, &a->sun.accel);
+    case OPT_FRAMES:
+        if (parse_number(name, v, 1, 2000000000L, 1, &x))
             return 1;
-        }
+        a->frames_max = (long)x;
         return 0;
-    case OPT_KNOB:
-        if (strcmp(v, "azimuth") && strcmp(v, "elevation")) {
-            fprintf(stderr, "cumulo: --knob expects azimuth or elevation, got '%s'\n", v);
+    case OPT_STEP:
+        if (parse_number(name, v, 0.001, 90.0, 0, &a->sun.step_az))
             return 1;
-        }
-        a->knob_el = v[0] == 'e';
+        a->sun.step_el = a->sun.step_az / 2.0;
         return 0;
+    case OPT_COMMON: return cli_common_option(&a->o, 2, common, &i) < 0;
     case OPT_EL_RANGE: a->el_range = v; return 0;
     case OPT_AZ_RANGE: a->az_range = v; return 0;
+    case OPT_INPUT:
+        if (!cu_input_set_add(&a->inputs, v, err, sizeof err))
+            return 0;
+        break;
+    case OPT_KNOB:
+        a->sun.axis = v[0] == 'e' ? CU_SUN_ELEVATION : CU_SUN_AZIMUTH;
+        if (!strcmp(v, "azimuth") || !strcmp(v, "elevation"))
+            return 0;
+        snprintf(err, sizeof err, "--knob expects azimuth or elevation, got '%s'", v);
+        break;
     }
+    fprintf(stderr, "cumulo: %s\n", err);
     return 1;
 }
 
@@ -195,27 +164,20 @@ static int take_option(run_args *a, int c, const char *name, char *v)
 static int parse_args(run_args *a, int argc, char **argv)
 {
     memset(a, 0, sizeof *a);
-    a->step = 1.0;
-    a->accel = 0.25;
+    cu_sun_ctl_init(&a->sun, 0, 0);
     opterr = 0;
     optind = 1;
     for (;;) {
         int at = optind, idx = -1;
         int c = getopt_long(argc, argv, "-:hv", long_opts, &idx);
-        if (c == -1) {
-            if (at < argc) { /* stopped at "--", which cumulo has never taken as the end of the options */
-                fprintf(stderr, "cumulo run: unknown option '%s'\n", argv[at]);
-                usage(stderr);
-                return 2;
-            }
+        if (c == -1 && at == argc)
             break;
-        }
         char name[40];
         snprintf(name, sizeof name, "--%s", idx >= 0 ? long_opts[idx].name : "");
         if (c == 'h') {
             usage(stdout);
             return 0;
-        } else if (c == '?') {
+        } else if (c == '?' || c == -1) { /* -1 before the end: "--", never the end of the options here */
             fprintf(stderr, "cumulo run: unknown option '%s'\n", argv[at]);
             usage(stderr);
             return 2;
@@ -236,14 +198,12 @@ static int parse_args(run_args *a, int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    cu_sun_ctl defaults;
-    cu_sun_ctl_init(&defaults, 0, 0);
-    a->lim = defaults.lim;
     char err[512];
-    if ((a->el_range && cu_sun_parse_range("--sun-elevation-range", a->el_range, -90, 90, &a->lim.el_min,
-                                           &a->lim.el_max, err, sizeof err)) ||
-        (a->az_range && cu_sun_parse_range("--sun-azimuth-range", a->az_range, -720, 720, &a->lim.az_min,
-                                           &a->lim.az_max, err, sizeof err))) {
+    cu_sun_limits *lim = &a->sun.lim;
+    if ((a->el_range && cu_sun_parse_range("--sun-elevation-range", a->el_range, -90, 90, &lim->el_min,
+                                           &lim->el_max, err, sizeof err)) ||
+        (a->az_range && cu_sun_parse_range("--sun-azimuth-range", a->az_range, -720, 720, &lim->az_min,
+                                           &lim->az_max, err, sizeof err))) {
         fprintf(stderr, "cumulo: %s\n", err);
         return 2;
     }
@@ -283,11 +243,7 @@ static int open_session(run_session *s, run_args *a)
         return 1;
     }
     s->verbose = a->o.verbose;
-    cu_desc desc = {0};
-    desc.get_proc_address = getproc;
-    desc.get_proc_user = s;
-    desc.log = log_cb;
-    desc.log_user = &s->verbose;
+    cu_desc desc = { .get_proc_address = getproc, .get_proc_user = s, .log = log_cb, .log_user = &s->verbose };
     if (cu_renderer_create(&s->r, &desc, &e) || cu_renderer_set_scene(s->r, s->scene, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;
@@ -295,55 +251,40 @@ static int open_session(run_session *s, run_args *a)
     return 0;
 }
 
-static const char *axis_name(cu_sun_axis axis)
-{
-    return axis == CU_SUN_AZIMUTH ? "azimuth" : "elevation";
-}
+static const char *axis_name(cu_sun_axis axis) { return axis == CU_SUN_AZIMUTH ? "azimuth" : "elevation"; }
 
 /* Applies what the inputs said, one sun pass however many detents or commands came. Returns 1 on quit. */
-static int apply_actions(const run_actions *got, cu_sun_ctl *sun, cu_renderer *r, long frames)
+static int apply_actions(const cu_action *acts, const char **source, int n, cu_sun_ctl *sun, cu_renderer *r,
+                         long frames)
 {
-    int moved = 0, quit = 0;
+    int moved = 0, k;
     cu_error e;
-    for (int k = 0; k < got->n; k++) {
-        const cu_action *a = &got->acts[k];
-        if (a->kind == CU_ACT_QUIT) {
-            quit = 1;
-            break;
-        }
+    for (k = 0; k < n && acts[k].kind != CU_ACT_QUIT; k++) {
+        const cu_action *a = &acts[k];
         if (a->kind == CU_ACT_STATUS) {
             printf("status elevation=%.3f azimuth=%.3f knob=%s frames=%ld\n", sun->el, sun->az,
                    axis_name(sun->axis), frames);
             fflush(stdout);
         }
         if (a->kind == CU_ACT_TOGGLE)
-            fprintf(stderr, "knob axis=%s source=%s\n", axis_name(!sun->axis), got->source[k]);
+            fprintf(stderr, "knob axis=%s source=%s\n", axis_name(!sun->axis), source[k]);
         if (cu_sun_ctl_apply(sun, a)) {
             moved = 1;
-            fprintf(stderr, "sun elevation=%.3f azimuth=%.3f source=%s\n", sun->el, sun->az, got->source[k]);
+            fprintf(stderr, "sun elevation=%.3f azimuth=%.3f source=%s\n", sun->el, sun->az, source[k]);
         }
     }
     if (moved && cu_renderer_set_sun(r, sun->el, sun->az, &e))
         fprintf(stderr, "cumulo: %s\n", e.msg);
-    return quit;
+    return k < n; /* stopped at a quit */
 }
 
-/* The sun the scene starts with, inside the limits, and the knob settings of the command line. */
+/* The knob as the command line set it up, from the scene's sun inside the limits. */
 static void init_sun(cu_sun_ctl *sun, const run_args *a, cu_renderer *r)
 {
     double el0, az0;
     cu_error e;
     cu_renderer_get_sun(r, &el0, &az0);
-    cu_sun_ctl_init(sun, el0, az0);
-    sun->lim = a->lim;
-    cu_sun_ctl_clamp(&sun->lim, &sun->el, &sun->az);
-    sun->axis = a->knob_el ? CU_SUN_ELEVATION : CU_SUN_AZIMUTH;
-    if (a->have_step) {
-        sun->step_az = a->step;
-        sun->step_el = a->step / 2.0;
-    }
-    if (a->have_accel)
-        sun->accel = a->accel;
+    cu_sun_ctl_start(sun, &a->sun, el0, az0);
     if ((sun->el != el0 || sun->az != az0) && cu_renderer_set_sun(r, sun->el, sun->az, &e))
         fprintf(stderr, "cumulo: %s\n", e.msg);
 }
@@ -357,72 +298,52 @@ static void print_header(const run_session *s, const run_args *a, const cu_sun_c
     s->be->frame(s->disp, &fbo, &w, &h);
     s->be->describe(s->disp, surface, sizeof surface);
     cu_input_set_describe(&a->inputs, inputs, sizeof inputs);
-    printf("=======================================================\n"
-           "    cumulo run %s\n"
-           "=======================================================\n"
-           "    GL_VENDOR:     %s\n"
-           "    GL_RENDERER:   %s\n"
-           "    GL_VERSION:    %s\n"
-           "    Surface:       %s\n"
-           "    Size:          %dx%d\n"
-           "    Inputs:        %s\n"
-           "    Sun:           elevation=%.3f azimuth=%.3f knob=%s\n"
-           "=======================================================\n",
-           a->o.scene_path, cu_renderer_gl_string(s->r, 0), cu_renderer_gl_string(s->r, 1),
-           cu_renderer_gl_string(s->r, 2), surface, w, h, inputs[0] ? inputs : "(none)", sun->el, sun->az,
-           axis_name(sun->axis));
+    const char *bar = "=======================================================";
+    printf("%s\n    cumulo run %s\n%s\n", bar, a->o.scene_path, bar);
+    printf("    GL_VENDOR:     %s\n    GL_RENDERER:   %s\n    GL_VERSION:    %s\n", cu_renderer_gl_string(s->r, 0),
+           cu_renderer_gl_string(s->r, 1), cu_renderer_gl_string(s->r, 2));
+    printf("    Surface:       %s\n    Size:          %dx%d\n    Inputs:        %s\n", surface, w, h,
+           inputs[0] ? inputs : "(none)");
+    printf("    Sun:           elevation=%.3f azimuth=%.3f knob=%s\n%s\n", sun->el, sun->az, axis_name(sun->axis), bar);
     fflush(stdout);
-}
-
-/* Whether the inputs end the run: every requested one is gone (*rc = 1), or, headless without a frame count, the
- * command stream ended and nothing can change any more. */
-static int inputs_finished(const cu_input_set *in, int idle_headless, int *rc)
-{
-    int any_open, any_ended;
-    if (cu_input_set_left(in, &any_open, &any_ended) == 0 && in->nrequired) {
-        fprintf(stderr, "cumulo: no requested input is left (see above); exiting\n");
-        *rc = 1;
-        return 1;
-    }
-    return idle_headless && !any_open && any_ended;
-}
-
-/* Renders and presents one frame: 0, -1 when the window was closed, 1 after printing an error. */
-static int draw_frame(run_session *s)
-{
-    unsigned fbo;
-    int w, h;
-    char err[512];
-    cu_error e;
-    s->be->frame(s->disp, &fbo, &w, &h);
-    cu_frame f = { fbo, w, h, 0 };
-    if (cu_render(s->r, &f, &e)) {
-        fprintf(stderr, "cumulo: %s\n", e.msg);
-        return 1;
-    }
-    int pr = s->be->present(s->disp, err, sizeof err);
-    if (pr > 0)
-        fprintf(stderr, "cumulo: %s\n", err);
-    return pr;
 }
 
 static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
 {
-    /* Headless without a frame count has no vsync to pace it: wait for input up to a 60 Hz frame instead of
-     * spinning. */
-    int idle_headless = s->headless && !a->frames_max;
+    /* Headless without a frame count has no vsync: wait for input up to a 60 Hz frame instead of spinning. */
+    int idle_headless = (!strcmp(s->be->name, "egl") || !strcmp(s->be->name, "osmesa")) && !a->frames_max;
     uint64_t t_start = now_ns();
     long frames = 0;
-    int rc = 0;
+    int rc = 0, any_open, any_ended;
     while (!quit_signal && (!a->frames_max || frames < a->frames_max)) {
-        run_actions got;
-        got.n = cu_input_set_poll(&a->inputs, idle_headless ? 16 : 0, got.acts, got.source, MAX_ACTIONS);
-        if (apply_actions(&got, sun, s->r, frames) || inputs_finished(&a->inputs, idle_headless, &rc))
+        cu_action acts[MAX_ACTIONS];
+        const char *source[MAX_ACTIONS];
+        int n = cu_input_set_poll(&a->inputs, idle_headless ? 16 : 0, acts, source, MAX_ACTIONS);
+        if (apply_actions(acts, source, n, sun, s->r, frames))
             break;
-        int d = draw_frame(s);
-        if (d) {
-            rc = d > 0;
+        if (!cu_input_set_left(&a->inputs, &any_open, &any_ended) && a->inputs.nrequired) {
+            fprintf(stderr, "cumulo: no requested input is left (see above); exiting\n");
+            rc = 1;
             break;
+        }
+        if (idle_headless && !any_open && any_ended)
+            break; /* the command stream ended and there is no frame count: nothing can change any more */
+        unsigned fbo;
+        int w, h, pr;
+        char err[512];
+        cu_error e;
+        s->be->frame(s->disp, &fbo, &w, &h);
+        cu_frame f = { fbo, w, h, 0 };
+        if (cu_render(s->r, &f, &e)) {
+            fprintf(stderr, "cumulo: %s\n", e.msg);
+            rc = 1;
+            break;
+        }
+        if ((pr = s->be->present(s->disp, err, sizeof err)) != 0) {
+            if (pr > 0)
+                fprintf(stderr, "cumulo: %s\n", err);
+            rc = pr > 0;
+            break; /* < 0: the window was closed */
         }
         frames++;
     }
@@ -447,11 +368,8 @@ int cmd_run(int argc, char **argv)
         list_display_backends(stderr);
         return 2;
     }
-    s.headless = !strcmp(s.be->name, "egl") || !strcmp(s.be->name, "osmesa");
 
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal; /* no SA_RESTART: a blocked poll returns and the loop sees the flag */
+    struct sigaction sa = { .sa_handler = on_signal }; /* no SA_RESTART: a blocked poll returns, the loop sees it */
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
@@ -472,11 +390,9 @@ int cmd_run(int argc, char **argv)
         }
     }
     cu_input_set_close(&a.inputs);
-    if (s.r)
-        cu_renderer_destroy(s.r);
+    cu_renderer_destroy(s.r);
     if (s.disp)
         s.be->close(s.disp); /* DRM: puts the previous CRTC (the console) back */
-    if (s.scene)
-        cu_scene_free(s.scene);
+    cu_scene_free(s.scene);
     return rc;
 }
