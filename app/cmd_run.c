@@ -121,7 +121,7 @@ static const struct option long_opts[] = {
 /* One option and its value; 0, or 1 after printing why the value is wrong. */
 static int take_option(run_args *a, int c, const char *name, char *v)
 {
-    char err[512], *common[2] = { (char *)name, v }; /* session.c checks its options in an argv */
+    char err[512] = "", *common[2] = { (char *)name, v }; /* session.c checks its options in an argv */
     double x;
     int i = 0;
     switch (c) {
@@ -149,11 +149,12 @@ static int take_option(run_args *a, int c, const char *name, char *v)
             return 0;
         break;
     case OPT_KNOB:
+        if (strcmp(v, "azimuth") && strcmp(v, "elevation")) {
+            snprintf(err, sizeof err, "--knob expects azimuth or elevation, got '%s'", v);
+            break;
+        }
         a->sun.axis = v[0] == 'e' ? CU_SUN_ELEVATION : CU_SUN_AZIMUTH;
-        if (!strcmp(v, "azimuth") || !strcmp(v, "elevation"))
-            return 0;
-        snprintf(err, sizeof err, "--knob expects azimuth or elevation, got '%s'", v);
-        break;
+        return 0;
     }
     fprintf(stderr, "cumulo: %s\n", err);
     return 1;
@@ -198,18 +199,16 @@ static int parse_args(run_args *a, int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    /* The values checked once all are in: a later --sun-*-range replaces an earlier one, as it always has. */
     char err[512];
     cu_sun_limits *lim = &a->sun.lim;
+    int mw, mh;
+    double mhz;
     if ((a->el_range && cu_sun_parse_range("--sun-elevation-range", a->el_range, -90, 90, &lim->el_min,
                                            &lim->el_max, err, sizeof err)) ||
         (a->az_range && cu_sun_parse_range("--sun-azimuth-range", a->az_range, -720, 720, &lim->az_min,
-                                           &lim->az_max, err, sizeof err))) {
-        fprintf(stderr, "cumulo: %s\n", err);
-        return 2;
-    }
-    int mw, mh;
-    double mhz;
-    if (CU_HAVE_DRM && a->dopt.mode && cu_drm_parse_mode(a->dopt.mode, &mw, &mh, &mhz, err, sizeof err)) {
+                                           &lim->az_max, err, sizeof err)) ||
+        (CU_HAVE_DRM && a->dopt.mode && cu_drm_parse_mode(a->dopt.mode, &mw, &mh, &mhz, err, sizeof err))) {
         fprintf(stderr, "cumulo: %s\n", err);
         return 2;
     }
