@@ -55,6 +55,9 @@ $(eval $(call test_program,test_gpio_v2,$(GPIO_TEST_SRCS) platform/input/gpio_v2
 ifeq ($(GPIO_API),1)
 $(eval $(call test_program,test_gpio_v1,$(GPIO_TEST_SRCS) platform/input/gpio_v1.c,$(GPIO_CFLAGS),))
 endif
+# The input set with every input back end of this build, through the table in input_backend.c.
+$(eval $(call test_program,test_input_set,tests/platform/test_input_set.c $(filter platform/input/%,$(INPUT_SRCS)),\
+  $(GPIO_CFLAGS),$(GPIO_LIBS)))
 CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_gpio_sim.sh tests/platform/test_soak.sh
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
