@@ -6,18 +6,19 @@ DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platfor
                 $(if $(filter 1,$(HAVE_DRM)),platform/display/drm.c) \
                 $(if $(filter 1,$(HAVE_X11)),platform/display/x11.c) \
                 $(if $(filter 1,$(HAVE_WAYLAND)),platform/display/wayland.c)
-INPUT_SRCS   := platform/input/input.c platform/input/evdev.c platform/input/stdin_input.c \
-                platform/input/quadrature.c platform/input/sun_control.c \
-                $(if $(filter 1,$(HAVE_GPIO)),platform/input/gpio.c)
+# The knob's logic (gpio.c) is the same for both libgpiod APIs; the glue is the one configure found (GPIO_API 1 or 2).
+GPIO_SRCS    := platform/input/gpio.c platform/input/gpio_v$(GPIO_API).c
+INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/input/input_set.c platform/input/evdev.c \
+                platform/input/stdin_input.c platform/input/quadrature.c platform/input/sun_control.c \
+                $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
 PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
 PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread
 
 PLATFORM_CPPFLAGS := -Iplatform/display -Iplatform/input -I$(B)/gen
-GPIO_API_FLAG := $(if $(filter 2,$(GPIO_API)),-DCU_GPIOD_V2)
 CFLAGS_PLATFORM := $(CFLAGS_BASE) $(PLATFORM_CPPFLAGS)
 $(eval $(call flags_rule,platform,$(CC) $(CFLAGS_PLATFORM) $(EGL_CFLAGS) $(OSMESA_CFLAGS) $(DRM_CFLAGS) \
-  $(X11_CFLAGS) $(WAYLAND_CFLAGS) $(GPIO_CFLAGS) $(GPIO_API_FLAG)))
+  $(X11_CFLAGS) $(WAYLAND_CFLAGS) $(GPIO_CFLAGS)))
 
 # Each back end's file gets its own libraries' flags, and only it.
 $(B)/obj/platform/display/egl_common.o $(B)/obj/platform/display/egl_surfaceless.o: XCFLAGS := $(EGL_CFLAGS)
@@ -25,7 +26,7 @@ $(B)/obj/platform/display/osmesa.o: XCFLAGS := $(OSMESA_CFLAGS)
 $(B)/obj/platform/display/drm.o: XCFLAGS := $(DRM_CFLAGS) $(EGL_CFLAGS)
 $(B)/obj/platform/display/x11.o: XCFLAGS := $(X11_CFLAGS) $(EGL_CFLAGS)
 $(B)/obj/platform/display/wayland.o: XCFLAGS := $(WAYLAND_CFLAGS) $(EGL_CFLAGS)
-$(B)/obj/platform/input/gpio.o: XCFLAGS := $(GPIO_CFLAGS) $(GPIO_API_FLAG)
+$(B)/obj/platform/input/gpio_v1.o $(B)/obj/platform/input/gpio_v2.o: XCFLAGS := $(GPIO_CFLAGS)
 
 # xdg-shell's client glue, generated from wayland-protocols' XML by wayland-scanner.
 WL_GEN := $(B)/gen/xdg-shell-client-protocol.h $(B)/gen/xdg-shell-protocol.inc

@@ -42,7 +42,7 @@ CHECK_TESTS += tests/app/test_cli.sh
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
 $(eval $(call test_program,test_input,tests/platform/test_input.c platform/input/input.c \
   platform/input/stdin_input.c platform/input/sun_control.c,,))
-$(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c,,))
+$(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c platform/input/input.c,,))
 $(eval $(call test_program,test_drm_mode,tests/platform/test_drm_mode.c platform/display/drm_mode.c,,))
 $(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c platform/input/evdev.c \
   platform/input/input.c,,-Wl$(,)--wrap=open$(,)--wrap=ioctl$(,)--wrap=read$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
@@ -51,14 +51,16 @@ ifeq ($(HAVE_DRM),1)
 $(eval $(call test_program,test_drm,tests/platform/test_drm.c platform/display/drm.c platform/display/drm_mode.c,\
   $(DRM_CFLAGS),-Wl$(,)--wrap=open$(,)--wrap=stat$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
 endif
-# gpio.c against a scripted fake of libgpiod: the v2 build declares the v2 API itself, so it runs everywhere; the v1
-# build needs the v1 header (libgpiod 1.x installed).
-$(eval $(call test_program,test_gpio_v2,tests/platform/test_gpio.c platform/input/quadrature.c \
-  platform/input/input.c,-DCU_GPIOD_V2,))
+# gpio.c and one API's glue against a scripted fake of libgpiod, the same assertions for both: the v2 build finds the
+# v2 API in tests/platform/gpiod_v2/gpiod.h, so it runs everywhere; the v1 build needs the v1 header (libgpiod 1.x).
+GPIO_TEST_SRCS := tests/platform/test_gpio.c platform/input/gpio.c platform/input/quadrature.c platform/input/input.c
+$(eval $(call test_program,test_gpio_v2,$(GPIO_TEST_SRCS) platform/input/gpio_v2.c,-Itests/platform/gpiod_v2,))
 ifeq ($(GPIO_API),1)
-$(eval $(call test_program,test_gpio_v1,tests/platform/test_gpio.c platform/input/quadrature.c \
-  platform/input/input.c,$(GPIO_CFLAGS),))
+$(eval $(call test_program,test_gpio_v1,$(GPIO_TEST_SRCS) platform/input/gpio_v1.c,$(GPIO_CFLAGS),))
 endif
+# The input set with every input back end of this build, through the table in input_backend.c.
+$(eval $(call test_program,test_input_set,tests/platform/test_input_set.c $(filter platform/input/%,$(INPUT_SRCS)),\
+  $(GPIO_CFLAGS),$(GPIO_LIBS)))
 CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_gpio_sim.sh tests/platform/test_soak.sh
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.

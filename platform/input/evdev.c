@@ -1,5 +1,7 @@
-/* platform/evdev.c: decoding of Linux input events into sun actions, and opening/reading /dev/input/event* devices. */
+/* platform/evdev.c: decoding of Linux input events into sun actions, opening/reading /dev/input/event* devices, and
+ * the "evdev" input back end built on them. */
 #include "evdev.h"
+#include "input_backend.h"
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -226,3 +228,55 @@ void cu_evdev_close(cu_evdev *e)
     close(e->fd);
     free(e);
 }
+
+/* ------------------------------------------------------------------ the "evdev" input back end */
+
+struct cu_input {
+    cu_evdev *dev;
+};
+
+static int evdev_open(cu_input **out, const cu_input_spec *spec, const cu_input_opts *opts, char *msg, size_t len)
+{
+    cu_input *in = calloc(1, sizeof *in);
+    if (!in) {
+        snprintf(msg, len, "evdev: out of memory");
+        return 1;
+    }
+    if (cu_evdev_open(&in->dev, spec, opts->grab, msg, len)) {
+        free(in);
+        return 1;
+    }
+    char desc[300];
+    cu_input_describe(spec, desc, sizeof desc);
+    snprintf(msg, len, "input: %s ('%s')", desc, cu_evdev_name(in->dev));
+    *out = in;
+    return 0;
+}
+
+static int evdev_fds(cu_input *in, int *fds, int max)
+{
+    if (max < 1)
+        return 0;
+    fds[0] = cu_evdev_fd(in->dev);
+    return 1;
+}
+
+static cu_input_status evdev_read(cu_input *in, cu_action *acts, int max, int *n, char *err, size_t errlen)
+{
+    return cu_evdev_read(in->dev, acts, max, n, err, errlen) ? CU_INPUT_READ_GONE : CU_INPUT_READ_OK;
+}
+
+static void evdev_close(cu_input *in)
+{
+    cu_evdev_close(in->dev);
+    free(in);
+}
+
+const cu_input_backend cu_input_evdev = {
+    .name = "evdev",
+    .kind = CU_INPUT_EVDEV,
+    .open = evdev_open,
+    .fds = evdev_fds,
+    .read = evdev_read,
+    .close = evdev_close,
+};

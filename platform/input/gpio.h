@@ -1,5 +1,5 @@
 /* platform/gpio.h: a rotary encoder (lines A, B) and optional push button on GPIO through libgpiod (v1 or v2 API,
- * chosen at build time), turned into sun actions by the quadrature decoder. */
+ * gpio_v1.c or gpio_v2.c, chosen at build time), turned into sun actions by the quadrature decoder. */
 #ifndef CU_PLATFORM_GPIO_H
 #define CU_PLATFORM_GPIO_H
 #include "input.h"
@@ -11,7 +11,8 @@ typedef struct cu_gpio cu_gpio;
 int  cu_gpio_open(cu_gpio **out, const cu_input_spec *spec, char *err, size_t errlen);
 /* A note worth printing once after a successful open (e.g. "bias not supported by this kernel"), or "". */
 const char *cu_gpio_note(const cu_gpio *g);
-/* The file descriptors to poll for readability (v1: one per line, v2: one per request). Returns the count. */
+/* The file descriptors to poll for readability (v1: the reader thread's wake-up pipe, v2: the line request's).
+ * Returns the count. */
 int  cu_gpio_fds(const cu_gpio *g, int *fds, int max);
 /* Reads pending edges (never blocks), decodes them; *n actions written. Returns 1 when the chip is gone. */
 int  cu_gpio_read(cu_gpio *g, cu_action *acts, int max, int *n, char *err, size_t errlen);

@@ -1,5 +1,7 @@
-/* platform/stdin_input.c: the stdin command language of `cumulo run` (sun, turn, toggle, quit...) and its line reader. */
+/* platform/stdin_input.c: the stdin command language of `cumulo run` (sun, turn, toggle, quit...), its line reader,
+ * and the "stdin" input back end built on them. */
 #include "stdin_input.h"
+#include "input_backend.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -155,3 +157,82 @@ int cu_stdin_read(cu_stdin *s, void (*fn)(void *user, const char *line), void *u
     s->eof = 1;
     return 1;
 }
+
+/* ------------------------------------------------------------------ the "stdin" input back end */
+
+struct cu_input {
+    cu_stdin in;
+    cu_input_opts opts;
+    cu_action *acts;    /* where the lines of the current read() go */
+    int max, n;
+};
+
+static void say(cu_input *in, const char *msg)
+{
+    if (in->opts.log)
+        in->opts.log(in->opts.log_user, msg);
+}
+
+static void on_line(void *user, const char *line)
+{
+    cu_input *in = user;
+    cu_action a;
+    char err[256];
+    if (!strcmp(line, CU_STDIN_OVERLONG)) {
+        snprintf(err, sizeof err, "stdin: line longer than %d characters ignored", CU_STDIN_LINE_MAX - 1);
+        say(in, err);
+    } else if (cu_stdin_parse(line, &a, err, sizeof err)) {
+        say(in, err); /* a typo in one command must not end the session */
+    } else if (a.kind != CU_ACT_NONE && in->n < in->max) {
+        in->acts[in->n++] = a;
+    }
+}
+
+static int stdin_open(cu_input **out, const cu_input_spec *spec, const cu_input_opts *opts, char *msg, size_t len)
+{
+    (void)spec;
+    *out = calloc(1, sizeof **out);
+    if (!*out) {
+        snprintf(msg, len, "stdin: out of memory");
+        return 1;
+    }
+    cu_stdin_init(&(*out)->in, STDIN_FILENO);
+    (*out)->opts = *opts;
+    if (len)
+        msg[0] = '\0';
+    return 0;
+}
+
+static int stdin_fds(cu_input *in, int *fds, int max)
+{
+    if (max < 1)
+        return 0;
+    fds[0] = in->in.fd;
+    return 1;
+}
+
+static cu_input_status stdin_read(cu_input *in, cu_action *acts, int max, int *n, char *err, size_t errlen)
+{
+    (void)err;
+    (void)errlen;
+    in->acts = acts;
+    in->max = max;
+    in->n = 0;
+    int ended = cu_stdin_read(&in->in, on_line, in);
+    *n = in->n;
+    return ended ? CU_INPUT_READ_ENDED : CU_INPUT_READ_OK;
+}
+
+static void stdin_close(cu_input *in)
+{
+    free(in); /* the descriptor is the process's, not ours to close */
+}
+
+const cu_input_backend cu_input_stdin = {
+    .name = "stdin",
+    .kind = CU_INPUT_STDIN,
+    .open = stdin_open,
+    .fds = stdin_fds,
+    .read = stdin_read,
+    .close = stdin_close,
+};

@@ -24,6 +24,17 @@ void cu_sun_ctl_init(cu_sun_ctl *c, double el, double az)
     cu_sun_ctl_clamp(&c->lim, &c->el, &c->az);
 }
 
+void cu_sun_ctl_start(cu_sun_ctl *c, const cu_sun_ctl *settings, double el, double az)
+{
+    cu_sun_ctl_init(c, el, az);
+    el = c->el;
+    az = c->az;
+    *c = *settings;
+    c->el = el;
+    c->az = az;
+    cu_sun_ctl_clamp(&c->lim, &c->el, &c->az);
+}
+
 int cu_sun_parse_range(const char *opt, const char *s, double lo, double hi, double *min, double *max,
                        char *err, size_t errlen)
 {

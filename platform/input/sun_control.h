@@ -25,6 +25,9 @@ typedef struct cu_sun_ctl {
 /* Defaults: knob on azimuth, 1 deg/detent azimuth, 0.5 deg/detent elevation, acceleration 0.25 per detent/s above
  * 4 detents/s capped at x8, elevation -10..90, azimuth wraps. */
 void cu_sun_ctl_init(cu_sun_ctl *c, double el, double az);
+/* Starts c with the settings of `settings` (limits, axis, steps, acceleration) and the sun at (el, az), put inside
+ * the default limits as cu_sun_ctl_init does, then inside the settings' own. */
+void cu_sun_ctl_start(cu_sun_ctl *c, const cu_sun_ctl *settings, double el, double az);
 /* "MIN:MAX" in degrees; returns non-zero with a message naming the option. */
 int  cu_sun_parse_range(const char *opt, const char *s, double lo, double hi, double *min, double *max,
                         char *err, size_t errlen);

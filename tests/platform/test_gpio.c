@@ -1,7 +1,7 @@
 /* platform/test_gpio.c: the GPIO knob layer (gpio.c) against a scripted fake of libgpiod, built twice: with the v1
- * API (Debian 12's libgpiod 1.6 header) and with the v2 API (declared here, so the v2 code runs on a machine that
- * only has libgpiod 1.6). Checks the request (consumer, both edges, pull-up, v2 debounce), timestamp ordering of
- * edges from several queues, the button, no edge lost while the caller is busy for longer than the kernel's queue
+ * glue (gpio_v1.c, Debian 12's libgpiod 1.6 header) and with the v2 glue (gpio_v2.c against gpiod_v2/gpiod.h, so the
+ * v2 code runs on a machine that only has libgpiod 1.6). Checks the request (consumer, both edges, pull-up, v2
+ * debounce), timestamp ordering of edges from several queues, the button, no edge lost while the caller is busy for longer than the kernel's queue
  * lasts (v1: 16 events per line), and the one-line errors for missing/busy chips and lines. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdarg.h>
@@ -22,16 +22,11 @@
 #define NLINES 32
 #define QMAX 1024
 
-#ifdef CU_GPIOD_V2
-/* ---- the libgpiod v2 API as gpio.c uses it (signatures from libgpiod 2.x include/gpiod.h) ---- */
-#define CU_TEST_GPIOD_DECLARED
-enum gpiod_line_value { GPIOD_LINE_VALUE_ERROR = -1, GPIOD_LINE_VALUE_INACTIVE = 0, GPIOD_LINE_VALUE_ACTIVE = 1 };
-enum gpiod_line_direction { GPIOD_LINE_DIRECTION_AS_IS = 1, GPIOD_LINE_DIRECTION_INPUT, GPIOD_LINE_DIRECTION_OUTPUT };
-enum gpiod_line_edge { GPIOD_LINE_EDGE_NONE = 1, GPIOD_LINE_EDGE_RISING, GPIOD_LINE_EDGE_FALLING, GPIOD_LINE_EDGE_BOTH };
-enum gpiod_line_bias { GPIOD_LINE_BIAS_AS_IS = 1, GPIOD_LINE_BIAS_UNKNOWN, GPIOD_LINE_BIAS_DISABLED,
-                       GPIOD_LINE_BIAS_PULL_UP, GPIOD_LINE_BIAS_PULL_DOWN };
-enum gpiod_line_clock { GPIOD_LINE_CLOCK_MONOTONIC = 1, GPIOD_LINE_CLOCK_REALTIME, GPIOD_LINE_CLOCK_HTE };
-enum gpiod_edge_event_type { GPIOD_EDGE_EVENT_RISING_EDGE = 1, GPIOD_EDGE_EVENT_FALLING_EDGE };
+#include <gpiod.h> /* v1: the installed libgpiod 1.x header; v2: tests/platform/gpiod_v2/gpiod.h */
+#include "gpio.h"
+
+#ifdef CU_FAKE_GPIOD_V2
+/* The fake's state behind the v2 API's opaque types. */
 struct gpiod_chip { int unused; };
 struct gpiod_chip_info { int unused; };
 struct gpiod_line_info { unsigned off; };
@@ -41,8 +36,6 @@ struct gpiod_request_config { char consumer[64]; size_t bufsize; };
 struct gpiod_line_request { int unused; };
 struct gpiod_edge_event { int type; uint64_t t; unsigned off; };
 struct gpiod_edge_event_buffer { struct gpiod_edge_event ev[64]; size_t cap; };
-#else
-#include <gpiod.h>
 #endif
 
 /* ---- the fake kernel: 32 lines named GPIO0..GPIO31 on gpiochip0, scripted edges ---- */
@@ -91,7 +84,7 @@ static void open_pipe(int i)
  * drops it (v1: a fixed kfifo of 16 events per line; v2: the request's buffer, default 16 x lines). */
 static void fake_edge(int line, int level, uint64_t t)
 {
-#ifdef CU_GPIOD_V2
+#ifdef CU_FAKE_GPIOD_V2
     int qfd = F.rd[0], cap = F.bufsize ? (int)F.bufsize : 16 * F.nreq;
 #else
     int qfd = F.rd[line], cap = 16;
@@ -109,7 +102,7 @@ static void fake_edge(int line, int level, uint64_t t)
     F.q[F.qn].t = t;
     F.qn++;
     F.level[line] = level;
-#ifdef CU_GPIOD_V2
+#ifdef CU_FAKE_GPIOD_V2
     int fd = F.wr[0];
 #else
     int fd = F.wr[line];
@@ -126,7 +119,7 @@ static int parse_line_name(const char *name)
     return -1;
 }
 
-#ifndef CU_GPIOD_V2
+#ifndef CU_FAKE_GPIOD_V2
 /* ---- libgpiod v1 fakes ---- */
 struct gpiod_chip { int unused; };
 struct gpiod_line { unsigned off; };
@@ -357,8 +350,6 @@ uint64_t gpiod_edge_event_get_timestamp_ns(struct gpiod_edge_event *e) { return 
 unsigned gpiod_edge_event_get_line_offset(struct gpiod_edge_event *e) { return e->off; }
 #endif
 
-#include "gpio.c"
-
 /* ---- tests, the same for both APIs ---- */
 
 static cu_input_spec spec_of(const char *s)
@@ -391,7 +382,7 @@ static void test_request(void **state)
     assert_int_equal(F.requested[1], 27);
     assert_int_equal(F.requested[2], 22);
     assert_string_equal(cu_gpio_note(g), "");
-#ifdef CU_GPIOD_V2
+#ifdef CU_FAKE_GPIOD_V2
     assert_string_equal(cu_gpio_api(), "libgpiod v2");
     assert_int_equal(F.clock_mono, 1);
     assert_int_equal(F.debounce[17], 1000);  /* kernel debounce on the encoder... */

@@ -4,9 +4,12 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 #include <cmocka.h>
 #include "input.h"
+#include "input_backend.h"
 #include "stdin_input.h"
 #include "sun_control.h"
 
@@ -257,6 +260,72 @@ static void test_sun_acceleration(void **state)
     assert_true(c.az > 6.999 && c.az < 7.001);
 }
 
+extern const cu_input_backend cu_input_stdin; /* input_backend.c's table is not linked here: it needs them all */
+
+static char logged[512];
+static void log_line(void *user, const char *msg)
+{
+    (*(int *)user)++;
+    snprintf(logged, sizeof logged, "%s", msg);
+}
+
+/* The "stdin" back end over a pipe standing in for fd 0: commands become actions, a bad one is logged and skipped,
+ * the end of the stream is an ending, not a failure. */
+static void test_stdin_backend(void **state)
+{
+    (void)state;
+    int p[2], saved = dup(0), nlog = 0;
+    assert_int_equal(pipe(p), 0);
+    assert_int_equal(dup2(p[0], 0), 0);
+    close(p[0]);
+    cu_input_spec spec = { .kind = CU_INPUT_STDIN };
+    cu_input_opts opts = { .log = log_line, .log_user = &nlog };
+    cu_input *in;
+    char msg[256], err[256];
+    assert_int_equal(cu_input_stdin.open(&in, &spec, &opts, msg, sizeof msg), 0);
+    assert_string_equal(msg, "");
+    int fd;
+    assert_int_equal(cu_input_stdin.fds(in, &fd, 1), 1);
+    assert_int_equal(fd, 0);
+    const char *cmds = "sun 10 20\nbogus\nturn -3";
+    assert_int_equal(write(p[1], cmds, strlen(cmds)), (int)strlen(cmds));
+    cu_action acts[4];
+    int n;
+    assert_int_equal(cu_input_stdin.read(in, acts, 4, &n, err, sizeof err), CU_INPUT_READ_OK);
+    assert_int_equal(n, 1);
+    assert_int_equal(acts[0].kind, CU_ACT_SET_SUN);
+    assert_int_equal(nlog, 1);
+    assert_non_null(strstr(logged, "stdin: unknown command 'bogus'"));
+    close(p[1]);
+    assert_int_equal(cu_input_stdin.read(in, acts, 4, &n, err, sizeof err), CU_INPUT_READ_ENDED);
+    assert_int_equal(n, 1); /* the last line had no newline */
+    assert_int_equal(acts[0].kind, CU_ACT_TURN);
+    assert_int_equal(acts[0].detents, -3);
+    cu_input_stdin.close(in);
+    dup2(saved, 0);
+    close(saved);
+}
+
+/* The knob starts from the scene's sun put inside the default limits, then inside the command line's. */
+static void test_sun_ctl_start(void **state)
+{
+    (void)state;
+    cu_sun_ctl set, c;
+    cu_sun_ctl_init(&set, 0, 0);
+    set.lim.el_min = 40;
+    set.lim.el_max = 60;
+    set.axis = CU_SUN_ELEVATION;
+    set.step_az = 3;
+    cu_sun_ctl_start(&c, &set, 75, 400);
+    assert_true(c.el == 60 && c.az == 40);
+    assert_int_equal(c.axis, CU_SUN_ELEVATION);
+    assert_true(c.step_az == 3);
+    cu_sun_ctl_init(&set, 0, 0);
+    set.lim.el_min = -30;
+    cu_sun_ctl_start(&c, &set, -20, 10);
+    assert_true(c.el == -10); /* the default limit came first */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -268,6 +337,8 @@ int main(void)
         cmocka_unit_test(test_sun_knob_and_toggle),
         cmocka_unit_test(test_sun_set_and_limits),
         cmocka_unit_test(test_sun_acceleration),
+        cmocka_unit_test(test_stdin_backend),
+        cmocka_unit_test(test_sun_ctl_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
