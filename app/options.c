@@ -1,5 +1,5 @@
 /* app/options.c: the options every cumulo subcommand shares, --version, and opening a scene on a display. */
-#include "config.h"
+#include "input_backend.h"
 #include "session.h"
 #include "version.h"
 #include <stdlib.h>
@@ -68,7 +68,10 @@ void cli_print_version(FILE *f, const char *program)
     fprintf(f, "display back ends: headless");
     for (int i = 0; cu_display_backends[i]; i++)
         fprintf(f, " %s", cu_display_backends[i]->name);
-    fprintf(f, "\ninputs: stdin evdev%s\n", CU_HAVE_GPIOD ? " gpio" : "");
+    fprintf(f, "\ninputs:");
+    for (int i = 0; cu_input_backends[i]; i++)
+        fprintf(f, " %s", cu_input_backends[i]->name);
+    fprintf(f, "\n");
     fprintf(f, "data: %s\n", cu_default_data_dir());
 }
 
