@@ -3,7 +3,7 @@
 DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
                 platform/display/headless_fbo.c platform/display/drm_mode.c \
                 $(if $(filter 1,$(HAVE_OSMESA)),platform/display/osmesa.c) \
-                $(if $(filter 1,$(HAVE_DRM)),platform/display/drm.c) \
+                $(if $(filter 1,$(HAVE_DRM)),platform/display/drm.c platform/display/drm_probe.c) \
                 $(if $(filter 1,$(HAVE_X11)),platform/display/x11.c) \
                 $(if $(filter 1,$(HAVE_WAYLAND)),platform/display/wayland.c)
 # The knob's logic (gpio.c) is the same for both libgpiod APIs; the glue is the one configure found (GPIO_API 1 or 2).
@@ -23,7 +23,7 @@ $(eval $(call flags_rule,platform,$(CC) $(CFLAGS_PLATFORM) $(EGL_CFLAGS) $(OSMES
 # Each back end's file gets its own libraries' flags, and only it.
 $(B)/obj/platform/display/egl_common.o $(B)/obj/platform/display/egl_surfaceless.o: XCFLAGS := $(EGL_CFLAGS)
 $(B)/obj/platform/display/osmesa.o: XCFLAGS := $(OSMESA_CFLAGS)
-$(B)/obj/platform/display/drm.o: XCFLAGS := $(DRM_CFLAGS) $(EGL_CFLAGS)
+$(B)/obj/platform/display/drm.o $(B)/obj/platform/display/drm_probe.o: XCFLAGS := $(DRM_CFLAGS) $(EGL_CFLAGS)
 $(B)/obj/platform/display/x11.o: XCFLAGS := $(X11_CFLAGS) $(EGL_CFLAGS)
 $(B)/obj/platform/display/wayland.o: XCFLAGS := $(WAYLAND_CFLAGS) $(EGL_CFLAGS)
 $(B)/obj/platform/input/gpio_v1.o $(B)/obj/platform/input/gpio_v2.o: XCFLAGS := $(GPIO_CFLAGS)

@@ -44,11 +44,11 @@ $(eval $(call test_program,test_input,tests/platform/test_input.c platform/input
   platform/input/stdin_input.c platform/input/sun_control.c,,))
 $(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c platform/input/input.c,,))
 $(eval $(call test_program,test_drm_mode,tests/platform/test_drm_mode.c platform/display/drm_mode.c,,))
-$(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c platform/input/evdev.c \
+$(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c tests/platform/fake_dir.c platform/input/evdev.c \
   platform/input/input.c,,-Wl$(,)--wrap=open$(,)--wrap=ioctl$(,)--wrap=read$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
 ifeq ($(HAVE_DRM),1)
 # drm.c against a fake Pi-like display stack (libdrm, GBM and EGL helpers defined in the test, /dev/dri faked).
-$(eval $(call test_program,test_drm,tests/platform/test_drm.c platform/display/drm.c platform/display/drm_mode.c,\
+$(eval $(call test_program,test_drm,tests/platform/test_drm.c tests/platform/fake_dir.c platform/display/drm.c platform/display/drm_probe.c platform/display/drm_mode.c,\
   $(DRM_CFLAGS),-Wl$(,)--wrap=open$(,)--wrap=stat$(,)--wrap=opendir$(,)--wrap=readdir$(,)--wrap=closedir))
 endif
 # gpio.c and one API's glue against a scripted fake of libgpiod, the same assertions for both: the v2 build finds the
@@ -66,10 +66,10 @@ CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_gpio_sim.sh tests/
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))
 CHECK_TESTS += tests/mie/test_mie_cli.sh
-$(eval $(call test_program,test_slab,tests/slab/test_slab.c $(B)/obj/tools/slab/slab.o \
+$(eval $(call test_program,test_slab,tests/slab/test_slab.c $(B)/obj/tools/slab/slab.o $(B)/obj/tools/slab/slab_phase.o \
   $(B)/obj/tools/slab/fitlib.o,$(GSL_CFLAGS),$(GSL_LIBS)))
 CHECK_TESTS += tests/slab/test_slab_cli.sh
-$(eval $(call test_program,test_pathtrace,tests/pathtrace/test_pt.c $(B)/obj/tools/pathtrace/pt.o $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_pathtrace,tests/pathtrace/test_pt.c $(PT_OBJS) $(CORE),,$(LIB_LIBS)))
 CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 
 # build: configuration, install and an embedding program built against the installed copy (tests/build/).

@@ -1,6 +1,8 @@
-/* src/image.h: image files for programs and tests: 8-bit sRGB PNG (libpng) and linear float PFM, read and write. */
+/* src/core/image.h: image files for programs and tests: 8-bit sRGB PNG (libpng) and linear float PFM. The writers
+ * are public (cu_write_png, cu_write_pfm in cumulo.h); the readers are for the tests and tools. */
 #ifndef CU_IMAGE_H
 #define CU_IMAGE_H
+#include "cumulo.h"
 #include <stdint.h>
 
 typedef struct cu_image {
@@ -9,11 +11,9 @@ typedef struct cu_image {
     float *pxf;                  /* PFM: RGB, top row first */
 } cu_image;
 
-/* Writes RGBA8 pixels (top row first) as PNG. Returns 0 or -1 with a message in err. */
-int cu_png_write(const char *path, const uint8_t *rgba, int w, int h, char *err, int errlen);
-int cu_png_read(const char *path, cu_image *img, char *err, int errlen);
+/* Return 0, or 1 with a message naming the file in *err. */
+int cu_png_read(const char *path, cu_image *img, cu_error *err);
 /* PFM ("PF", little-endian, bottom row first in the file); pixels in memory top row first. */
-int cu_pfm_write(const char *path, const float *rgb, int w, int h, char *err, int errlen);
-int cu_pfm_read(const char *path, cu_image *img, char *err, int errlen);
+int cu_pfm_read(const char *path, cu_image *img, cu_error *err);
 void cu_image_free(cu_image *img);
 #endif

@@ -375,15 +375,15 @@ static void test_reference_images(void **st)
             tr_read_rgba8(&c, got[b]);
             tr_close(&c);
         }
-        char err[300];
+        cu_error err;
         if (regenerate) {
-            if (cu_png_write(refpath, got[0], REF_W, REF_H, err, sizeof err))
-                fail_msg("%s", err);
+            if (cu_write_png(refpath, got[0], REF_W, REF_H, &err))
+                fail_msg("%s", err.msg);
             printf("wrote %s\n", refpath);
         }
         cu_image ref;
-        if (cu_png_read(refpath, &ref, err, sizeof err))
-            fail_msg("%s (run `make refs` to create references)", err);
+        if (cu_png_read(refpath, &ref, &err))
+            fail_msg("%s (run `make refs` to create references)", err.msg);
         assert_int_equal(ref.width, REF_W);
         assert_int_equal(ref.height, REF_H);
         for (int b = 0; b < 2; b++) {

@@ -19,6 +19,7 @@
 #include <xf86drmMode.h>
 #include "display.h"
 #include "egl_common.h"
+#include "fake_dir.h"
 
 extern const cu_display_backend cu_display_drm;
 
@@ -89,35 +90,11 @@ int __wrap_stat(const char *path, struct stat *st)
     return __real_stat(path, st);
 }
 
-static int dir_token, dir_pos;
-static struct dirent dir_ent;
-DIR *__real_opendir(const char *path);
-DIR *__wrap_opendir(const char *path)
-{
-    if (strcmp(path, "/dev/dri/by-path"))
-        return __real_opendir(path);
-    if (F.no_dev_dri || F.no_by_path) {
-        errno = ENOENT;
-        return NULL;
-    }
-    dir_pos = 0;
-    return (DIR *)&dir_token;
-}
-struct dirent *__real_readdir(DIR *d);
-struct dirent *__wrap_readdir(DIR *d)
-{
-    /* As udev names them on a Pi 4: the V3D render GPU first, then the vc4 display controller. */
-    static const char *names[] = { ".", "..", "platform-fec00000.v3d-card", "platform-fec00000.v3d-render",
-                                   "platform-gpu-card" };
-    if (d != (DIR *)&dir_token)
-        return __real_readdir(d);
-    if (dir_pos >= (int)(sizeof names / sizeof names[0]))
-        return NULL;
-    snprintf(dir_ent.d_name, sizeof dir_ent.d_name, "%s", names[dir_pos++]);
-    return &dir_ent;
-}
-int __real_closedir(DIR *d);
-int __wrap_closedir(DIR *d) { return d == (DIR *)&dir_token ? 0 : __real_closedir(d); }
+/* As udev names them on a Pi 4: the V3D render GPU first, then the vc4 display controller. */
+static const char *const by_path_names[] = {".", "..", "platform-fec00000.v3d-card", "platform-fec00000.v3d-render",
+                                            "platform-gpu-card"};
+static int by_path_missing(void) { return F.no_dev_dri || F.no_by_path; }
+static const fake_dir by_path = {"/dev/dri/by-path", by_path_names, 5, by_path_missing};
 
 /* ---------------------------------------------------------------- libdrm */
 static drmModeModeInfo mk_mode(int w, int h, int hz, int preferred)
@@ -585,5 +562,6 @@ int main(void)
         cmocka_unit_test_setup(test_errors, setup),
         cmocka_unit_test_setup(test_display_in_use, setup),
     };
+    fake_dir_use(&by_path);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -14,6 +14,7 @@
 #include <unistd.h>
 #include <cmocka.h>
 #include "evdev.h"
+#include "fake_dir.h"
 
 #define NDEV 5
 static struct fakedev {
@@ -128,32 +129,9 @@ ssize_t __wrap_read(int fd, void *buf, size_t n)
 }
 
 /* /dev/input listing: event0..event4 plus entries that are not event devices. */
-static int dir_token, dir_pos;
-static struct dirent dir_ent;
-DIR *__real_opendir(const char *path);
-DIR *__wrap_opendir(const char *path)
-{
-    if (strcmp(path, "/dev/input"))
-        return __real_opendir(path);
-    dir_pos = 0;
-    return (DIR *)&dir_token;
-}
-struct dirent *__real_readdir(DIR *d);
-struct dirent *__wrap_readdir(DIR *d)
-{
-    static const char *names[] = { ".", "..", "by-id", "mice", "event0", "event1", "event2", "event3", "event4" };
-    if (d != (DIR *)&dir_token)
-        return __real_readdir(d);
-    if (dir_pos >= (int)(sizeof names / sizeof names[0]))
-        return NULL;
-    snprintf(dir_ent.d_name, sizeof dir_ent.d_name, "%s", names[dir_pos++]);
-    return &dir_ent;
-}
-int __real_closedir(DIR *d);
-int __wrap_closedir(DIR *d)
-{
-    return d == (DIR *)&dir_token ? 0 : __real_closedir(d);
-}
+static const char *const input_names[] = {".", "..", "by-id", "mice", "event0", "event1", "event2", "event3",
+                                          "event4"};
+static const fake_dir dev_input = {"/dev/input", input_names, 9, NULL};
 
 static void send(int d, uint16_t type, uint16_t code, int32_t value)
 {
@@ -270,5 +248,6 @@ int main(void)
         cmocka_unit_test_setup(test_open_by_name, setup),
         cmocka_unit_test_setup(test_open_errors, setup),
     };
+    fake_dir_use(&dev_input);
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

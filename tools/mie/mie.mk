@@ -1,5 +1,6 @@
 # tools/mie: the Lorenz-Mie solver (build/cumulo-mie) that makes data/mie_cloud.tbl. Its tests are in tests/mie/.
-MIE_LIB_SRCS := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c tools/mie/resonance.c
+MIE_LIB_SRCS := tools/mie/mie.c tools/mie/water.c tools/mie/colour.c tools/mie/mietable.c tools/mie/mietable_grid.c \
+                tools/mie/mietable_out.c tools/mie/resonance.c
 MIE_LIB_OBJS := $(MIE_LIB_SRCS:%.c=$(B)/obj/%.o)
 CFLAGS_TOOLS := $(CFLAGS_BASE) -Iinclude -Isrc/core -I$(B)/gen
 $(eval $(call flags_rule,tools,$(CC) $(CFLAGS_TOOLS)))

@@ -1,4 +1,5 @@
-/* Size-distribution and spectral averaging of Mie results, angle grids, sphere integrals, chop and table output. */
+/* tools/mie/mietable.c: size-distribution and spectral averaging of Mie results into the RGB phase table (grids in
+ * mietable_grid.c, integrals, chop and the table file in mietable_out.c). */
 #include "mietable.h"
 
 #include "colour.h"
@@ -12,95 +13,6 @@
 #include <string.h>
 
 static const double PI = 3.14159265358979323846;
-
-mt_params mt_params_default(void)
-{
-    mt_params p;
-    memset(&p, 0, sizeof p);
-    p.reff_um = 6.0;
-    p.veff = 0.1;
-    p.radius_um = 6.0;
-    /* With the narrow resonances corrected as poles (resonance.h) the radius quadrature converges
-     * exponentially, so a coarse step suffices; the cost is one extra Mie evaluation per corrected pole, which
-     * grows with dx. 0.05 is near the cheapest step at the table's accuracy (tools/mie/README.md). */
-    p.dx = 0.05;
-    p.lambda_min_nm = 400.0;
-    p.lambda_max_nm = 700.0;
-    /* Cubic product integration over wavelength (band_weights) converges fast enough for 20 nm steps
-     * (tools/mie/README.md). */
-    p.dlambda_nm = 20.0;
-    p.tail_stretch = 4.0;
-    p.threads = 2;
-    p.poles = 1;
-    return p;
-}
-
-/* ---- angle sets ---------------------------------------------------------------------------------------------- */
-
-static int angles_alloc(mt_angles *a, int nhalf, int nang)
-{
-    a->nhalf = nhalf;
-    a->nhalf_pad = (nhalf + MIE_JBLOCK - 1) / MIE_JBLOCK * MIE_JBLOCK;
-    a->nang = nang;
-    a->mu = calloc((size_t)a->nhalf_pad, sizeof *a->mu);
-    a->theta_deg = calloc((size_t)nang, sizeof *a->theta_deg);
-    a->src = calloc((size_t)nang, sizeof *a->src);
-    if (!a->mu || !a->theta_deg || !a->src) {
-        mt_angles_free(a);
-        return -1;
-    }
-    return 0;
-}
-
-void mt_angles_free(mt_angles *a)
-{
-    free(a->mu);
-    free(a->theta_deg);
-    free(a->src);
-    memset(a, 0, sizeof *a);
-}
-
-int mt_angles_table(mt_angles *a, double fine_deg, double fine_until_deg, double coarse_deg)
-{
-    /* Steps are given as counts so that every node is an exact multiple and 8 deg (the chop) is a node. */
-    int nfine = (int)lround(fine_until_deg / fine_deg);
-    int ncoarse = (int)lround((90.0 - fine_until_deg) / coarse_deg);
-    if (nfine < 1 || ncoarse < 1 || fabs(nfine * fine_deg - fine_until_deg) > 1e-9 ||
-        fabs(fine_until_deg + ncoarse * coarse_deg - 90.0) > 1e-9)
-        return -1;
-    int nhalf = nfine + ncoarse + 1; /* 0 .. 90 inclusive */
-    if (angles_alloc(a, nhalf, 2 * nhalf - 1) != 0)
-        return -1;
-    for (int h = 0; h < nhalf; h++) {
-        double t = h <= nfine ? h * fine_deg : fine_until_deg + (h - nfine) * coarse_deg;
-        a->mu[h] = cos(t * PI / 180.0);
-        a->theta_deg[h] = t;
-        a->src[h] = h << 1;
-        if (h < nhalf - 1) {
-            int i = 2 * nhalf - 2 - h;
-            a->theta_deg[i] = 180.0 - t;
-            a->src[i] = (h << 1) | 1;
-        }
-    }
-    a->mu[nhalf - 1] = 0.0; /* cos(90 deg) exactly, so both hemispheres give the same value there */
-    for (int h = nhalf; h < a->nhalf_pad; h++)
-        a->mu[h] = 1.0;
-    return 0;
-}
-
-int mt_angles_list(mt_angles *a, const double *theta_deg, int n)
-{
-    if (n < 1 || angles_alloc(a, n, n) != 0)
-        return -1;
-    for (int i = 0; i < n; i++) {
-        a->mu[i] = cos(theta_deg[i] * PI / 180.0);
-        a->theta_deg[i] = theta_deg[i];
-        a->src[i] = i << 1;
-    }
-    for (int h = n; h < a->nhalf_pad; h++)
-        a->mu[h] = 1.0;
-    return 0;
-}
 
 /* ---- one wavelength ------------------------------------------------------------------------------------------ */
 
@@ -441,42 +353,6 @@ void mt_result_free(mt_result *r)
     memset(r, 0, sizeof *r);
 }
 
-/* Weights of the band's nodes lo + i step (i < ns) for each channel: int w_c(lambda) X(lambda) dlambda over
- * [lo, lo + (ns-1) step] ~ sum_i bw[c][i] X_i, with X interpolated by local cubics through four neighbouring nodes
- * (linear below four nodes) and the product with the response integrated by composite Simpson at step/200.
- * The responses have kinks where clipped lobes cross zero; integrating them exactly instead of sampling them
- * with the trapezoid rule leaves only the interpolation error of the smooth X, so a coarse wavelength step
- * converges (data/mie_cloud.md). */
-static void band_weights(double lo, double step, int ns, double *bw[3])
-{
-    enum { M = 200 };
-    for (int i = 0; i + 1 < ns; i++)
-        for (int q = 0; q <= M; q++) {
-            double sw = (q == 0 || q == M) ? 1.0 : (q & 1) ? 4.0 : 2.0;
-            sw *= step / (3.0 * M);
-            double t = i + (double)q / M, l[4], rgb[3];
-            int first;
-            if (ns >= 4) {
-                int k = i - 1 < 0 ? 0 : i - 1 > ns - 4 ? ns - 4 : i - 1;
-                for (int j = 0; j < 4; j++) {
-                    l[j] = 1.0;
-                    for (int m = 0; m < 4; m++)
-                        if (m != j)
-                            l[j] *= (t - (k + m)) / (double)(j - m);
-                }
-                first = k;
-            } else {
-                l[0] = i + 1 - t;
-                l[1] = t - i;
-                l[2] = l[3] = 0.0;
-                first = i;
-            }
-            srgb_response(lo + t * step, rgb);
-            for (int c = 0; c < 3; c++)
-                for (int j = 0; j < 4 && first + j < ns; j++)
-                    bw[c][first + j] += sw * rgb[c] * l[j];
-        }
-}
 
 int mt_compute(const mt_params *p, const mt_angles *a, mt_result *r, char *err, size_t errlen)
 {
@@ -533,7 +409,7 @@ int mt_compute(const mt_params *p, const mt_angles *a, mt_result *r, char *err, 
             set_err(err, errlen, "out of memory");
             rc = -1;
         } else
-            band_weights(p->lambda_min_nm, p->dlambda_nm, ns, bw);
+            mt_band_weights(p->lambda_min_nm, p->dlambda_nm, ns, bw);
     }
     for (int i = 0; i < ns; i++)
         if (s[i].status != 0) {
@@ -549,7 +425,7 @@ int mt_compute(const mt_params *p, const mt_angles *a, mt_result *r, char *err, 
             rc = -1;
             break;
         }
-        /* Channel weight per wavelength (band_weights), for an equal-energy illuminant. Radiance adds over
+        /* Channel weight per wavelength (mt_band_weights), for an equal-energy illuminant. Radiance adds over
          * wavelength, so the channel phase function is int w <dsigma/dOmega> over int w <sigma_sca>: each
          * wavelength's phase function weighted by its scattering cross-section. */
         double wsum = 0.0, wl = 0.0, wext = 0.0, wsca = 0.0, wg = 0.0, wgeo = 0.0, wm = 0.0;
@@ -587,110 +463,4 @@ int mt_compute(const mt_params *p, const mt_angles *a, mt_result *r, char *err, 
     if (rc != 0)
         mt_result_free(r);
     return rc;
-}
-
-/* ---- integrals and the chop ---------------------------------------------------------------------------------- */
-
-double mt_sphere_integral(const double *theta_deg, const double *v, int n, int cosw)
-{
-    double total = 0.0;
-    int i = 0;
-    while (i < n - 1) {
-        /* Longest run of equal steps starting at i. */
-        double h = theta_deg[i + 1] - theta_deg[i];
-        int j = i + 1;
-        while (j < n - 1 && fabs((theta_deg[j + 1] - theta_deg[j]) - h) < 1e-9 * (1.0 + fabs(h)))
-            j++;
-        int m = j - i; /* intervals in the run */
-        double hr = h * PI / 180.0;
-        double f[4];
-#define F(k)                                                                                                         \
-    (v[k] * (cosw ? cos(theta_deg[k] * PI / 180.0) : 1.0) * sin(theta_deg[k] * PI / 180.0) * 2.0 * PI)
-        int simp_end = (m % 2 == 0) ? j : j - 3;
-        if (m == 1) {
-            total += 0.5 * hr * (F(i) + F(j));
-        } else {
-            for (int k = i; k + 2 <= simp_end; k += 2)
-                total += hr / 3.0 * (F(k) + 4.0 * F(k + 1) + F(k + 2));
-            if (simp_end != j) { /* Simpson's 3/8 rule on the last three intervals of an odd run */
-                for (int q = 0; q < 4; q++)
-                    f[q] = F(simp_end + q);
-                total += 3.0 * hr / 8.0 * (f[0] + 3.0 * f[1] + 3.0 * f[2] + f[3]);
-            }
-        }
-#undef F
-        i = j;
-    }
-    return total;
-}
-
-int mt_chop(const double *theta_deg, const double *p, int n, double chop_deg, double *f, double *ptilde)
-{
-    int ic = -1;
-    for (int i = 0; i < n; i++)
-        if (fabs(theta_deg[i] - chop_deg) < 1e-9)
-            ic = i;
-    if (ic < 0)
-        return -1;
-    double *pp = malloc((size_t)(ic + 1) * sizeof *pp);
-    if (!pp)
-        return -1;
-    for (int i = 0; i < n; i++) {
-        double pt = i < ic ? p[ic] : p[i];
-        if (ptilde)
-            ptilde[i] = pt;
-        if (i <= ic)
-            pp[i] = p[i] - pt;
-    }
-    /* P_p is zero from the chop angle on; integrating only [0, chop] keeps its kink at a run boundary. */
-    *f = mt_sphere_integral(theta_deg, pp, ic + 1, 0);
-    free(pp);
-    return 0;
-}
-
-/* ---- output -------------------------------------------------------------------------------------------------- */
-
-int mt_write_table(FILE *out, const mt_result *r, const double *theta_deg, const char *command, const mt_params *p)
-{
-    if (r->nchan != 3)
-        return -1;
-    double f[3];
-    for (int c = 0; c < 3; c++)
-        if (mt_chop(theta_deg, r->p[c], r->nang, 8.0, &f[c], NULL) != 0)
-            return -1;
-    fprintf(out, "# cumulo mie table v1\n");
-    fprintf(out, "# command: %s\n", command);
-    if (p->monodisperse)
-        fprintf(out, "# droplets: monodisperse r = %g um\n", p->radius_um);
-    else
-        fprintf(out, "# droplets: gamma distribution r_eff = %g um, v_eff = %g; radius step dx = %g in size "
-                     "parameter, x%g past r^4 n(r) < 1e-2 of peak, golden-ratio grid offset per wavelength\n",
-                p->reff_um, p->veff, p->dx, p->tail_stretch);
-    if (p->poles && !p->monodisperse)
-        fprintf(out, "# resonances: trapezoid error subtracted at %ld poles of a_n, b_n within 3 steps of the real "
-                     "size-parameter axis (tools/mie/resonance.h)\n",
-                r->npoles);
-    fprintf(out, "# spectrum: %g-%g nm, nodes every %g nm, equal-energy; cubic product integration against "
-                 "linear-sRGB weights from the Wyman-Sloan-Shirley CIE fit (negative lobes clipped)\n",
-            p->lambda_min_nm, p->lambda_max_nm, p->dlambda_nm);
-    if (p->use_m)
-        fprintf(out, "# refractive index: %.6f - %.3ei (fixed)\n", creal(p->m), -cimag(p->m));
-    else
-        fprintf(out, "# refractive index: water, Daimon-Masumura 2007 (20 degC) n, Hale-Querry 1973 k\n");
-    fprintf(out, "# P(theta) in sr^-1 with integral over the sphere = 1 (composite Simpson on the equal-step runs);"
-                 " sigma_ext in um^2 per droplet\n");
-    fprintf(out, "# angles: 0.05 deg steps on [0, 10] and [170, 180], 0.25 deg on [10, 170]; g from the Mie "
-                 "coefficients; f = integral of P_p = P - P~, P~ = P(8 deg) below 8 deg\n");
-    fprintf(out, "# Mie evaluations: %ld (grid nodes and poles)\n", r->nsolves);
-    /* No run time or date in the file: it must regenerate byte for byte (the time goes to stderr). */
-    fprintf(out, "channels 3\n");
-    fprintf(out, "lambda_nm %.2f %.2f %.2f\n", r->lambda_nm[0], r->lambda_nm[1], r->lambda_nm[2]);
-    fprintf(out, "sigma_ext_um2 %.7e %.7e %.7e\n", r->sigma_ext[0], r->sigma_ext[1], r->sigma_ext[2]);
-    fprintf(out, "g %.7e %.7e %.7e\n", r->g[0], r->g[1], r->g[2]);
-    fprintf(out, "chop_deg 8\n");
-    fprintf(out, "f %.7e %.7e %.7e\n", f[0], f[1], f[2]);
-    fprintf(out, "angles %d\n", r->nang);
-    for (int i = 0; i < r->nang; i++)
-        fprintf(out, "%.2f %.7e %.7e %.7e\n", theta_deg[i], r->p[0][i], r->p[1][i], r->p[2][i]);
-    return ferror(out) ? -1 : 0;
 }

@@ -36,6 +36,9 @@ typedef struct {
 int mt_angles_table(mt_angles *a, double fine_deg, double fine_until_deg, double coarse_deg);
 /* Arbitrary directions (degrees, any order), for the command line. */
 int mt_angles_list(mt_angles *a, const double *theta_deg, int n);
+/* Adds to bw[c][i] (c = R, G, B; i < ns) the weight of wavelength node lo + i step in channel c's band integral
+ * (mietable_grid.c explains the quadrature). */
+void mt_band_weights(double lo, double step, int ns, double *bw[3]);
 void mt_angles_free(mt_angles *a);
 
 /* Channel results. p[c][i] is the phase function (sr^-1, integral over the sphere = 1) at theta_deg[i]. */

@@ -240,11 +240,12 @@ int main(int argc, char **argv)
             rc = 1;
         }
         clock_gettime(CLOCK_MONOTONIC, &t1);
-        char perr[512], sp[4200];
+        cu_error perr;
+        char sp[4200];
         snprintf(sp, sizeof sp, "%s.stderr.pfm", out);
-        if (rc == 0 && (cu_pfm_write(out, mean, s->width, s->height, perr, sizeof perr) ||
-                        cu_pfm_write(sp, se, s->width, s->height, perr, sizeof perr))) {
-            fprintf(stderr, "cumulo-pt: %s\n", perr);
+        if (rc == 0 && (cu_write_pfm(out, mean, s->width, s->height, &perr) ||
+                        cu_write_pfm(sp, se, s->width, s->height, &perr))) {
+            fprintf(stderr, "cumulo-pt: %s\n", perr.msg);
             rc = 1;
         }
         if (rc == 0) {

@@ -7,14 +7,14 @@ $(B)/obj/tools/slab/%.o: tools/slab/%.c $(B)/flags/tools | $(B)/gen/version.h
 	@mkdir -p $(dir $@)
 	$(CC) $(SLAB_CFLAGS) -c $< -o $@
 
-$(B)/cumulo-slab: $(B)/obj/tools/slab/main.o $(B)/obj/tools/slab/slab.o
+$(B)/cumulo-slab: $(B)/obj/tools/slab/main.o $(B)/obj/tools/slab/slab.o $(B)/obj/tools/slab/slab_phase.o
 	$(CC) $^ -o $@ $(GSL_LIBS) -lm -lpthread
 
 $(B)/cumulo-slab-fit: $(B)/obj/tools/slab/fit.o $(B)/obj/tools/slab/fitlib.o
 	$(CC) $^ -o $@ $(GSL_LIBS) -lm
 
 # finite-cloud side study (README, "R and T vs thickness"): a sphere lit from the zenith
-$(B)/cumulo-slab-sphere: $(B)/obj/tools/slab/sphere.o $(B)/obj/tools/slab/slab.o
+$(B)/cumulo-slab-sphere: $(B)/obj/tools/slab/sphere.o $(B)/obj/tools/slab/slab.o $(B)/obj/tools/slab/slab_phase.o
 	$(CC) $^ -o $@ $(GSL_LIBS) -lm -lpthread
 
 ifeq ($(HAVE_GSL),1)
@@ -27,7 +27,7 @@ ifneq ($(SLAB_MPICC),)
 $(B)/obj/tools/slab/mpi/%.o: tools/slab/%.c
 	@mkdir -p $(dir $@)
 	$(SLAB_MPICC) $(SLAB_CFLAGS) -DCU_SLAB_MPI -c $< -o $@
-$(B)/cumulo-slab-mpi: $(B)/obj/tools/slab/mpi/main.o $(B)/obj/tools/slab/mpi/slab.o
+$(B)/cumulo-slab-mpi: $(B)/obj/tools/slab/mpi/main.o $(B)/obj/tools/slab/mpi/slab.o $(B)/obj/tools/slab/mpi/slab_phase.o
 	$(SLAB_MPICC) $(SLAB_CFLAGS) $^ -o $@ $(GSL_LIBS) -lm -lpthread
 ALL_BINS += $(B)/cumulo-slab-mpi
 endif

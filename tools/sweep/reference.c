@@ -68,16 +68,14 @@ static int render_reference(const sweep *sw, const view *v, char sets[][64], int
     pt_render_opts o = {sw->ew, sw->eh, sw->spp, sw->pt_threads, SW_PT_SEED, 0, PT_MODE_RADIANCE, 0};
     const char *dd = sw_data_dir();
     int rc = 0;
-    char err[512];
     if (!mean || !sig) {
         fprintf(stderr, "cumulo-sweep: out of memory for the reference of %s\n", v->name);
         rc = 1;
     } else if (pt_render_scene(s, dd ? dd : cu_default_data_dir(), &o, mean, sig, NULL, &e)) {
         fprintf(stderr, "cumulo-sweep: the path tracer failed on %s: %s\n", v->path, e.msg);
         rc = 1;
-    } else if (cu_pfm_write(out, mean, sw->ew, sw->eh, err, sizeof err) ||
-               cu_pfm_write(se, sig, sw->ew, sw->eh, err, sizeof err)) {
-        fprintf(stderr, "cumulo-sweep: %s\n", err);
+    } else if (cu_write_pfm(out, mean, sw->ew, sw->eh, &e) || cu_write_pfm(se, sig, sw->ew, sw->eh, &e)) {
+        fprintf(stderr, "cumulo-sweep: %s\n", e.msg);
         remove(out);
         remove(se);
         rc = 1;
@@ -124,12 +122,12 @@ int sw_load_reference(sweep *sw, view *v)
             return 1;
         printf("sweep: reference %s took %.1f s\n", v->name, (sw_now_ms() - t0) / 1e3);
     }
-    char err[512];
+    cu_error err;
     cu_image sig;
-    if (cu_pfm_read(out, &v->ref, err, sizeof err))
-        return fprintf(stderr, "cumulo-sweep: %s\n", err), 1;
-    if (cu_pfm_read(se, &sig, err, sizeof err))
-        return fprintf(stderr, "cumulo-sweep: %s\n", err), 1;
+    if (cu_pfm_read(out, &v->ref, &err))
+        return fprintf(stderr, "cumulo-sweep: %s\n", err.msg), 1;
+    if (cu_pfm_read(se, &sig, &err))
+        return fprintf(stderr, "cumulo-sweep: %s\n", err.msg), 1;
     if (v->ref.width != sw->ew || v->ref.height != sw->eh || sig.width != sw->ew || sig.height != sw->eh) {
         cu_image_free(&sig);
         return fprintf(stderr, "cumulo-sweep: %s has the wrong size\n", out), 1;

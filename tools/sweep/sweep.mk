@@ -15,14 +15,14 @@ $(B)/obj/tools/sweep/%.o: tools/sweep/%.c $(B)/flags/sweep | $(B)/gen/version.h
 
 # The reference cache key includes a checksum of the code that computes a reference: the path tracer's object and
 # the core's (what build/cumulo-pt is made of, less its command line). Rewritten only when it changes.
-SWEEP_PT_CODE := $(B)/obj/tools/pathtrace/pt.o $(CORE_OBJS)
+SWEEP_PT_CODE := $(PT_OBJS) $(CORE_OBJS)
 $(B)/gen/sweep_pt_code.h: $(SWEEP_PT_CODE)
 	@mkdir -p $(@D)
 	@printf '#define SW_PT_CODE "%s"\n' "$$(cat $(SWEEP_PT_CODE) | cksum | tr ' ' '-')" >$@.tmp; \
 	  if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
 $(B)/obj/tools/sweep/reference.o: $(B)/gen/sweep_pt_code.h
 
-SWEEP_LINK := $(SWEEP_OBJS) $(B)/obj/tools/pathtrace/pt.o $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a
+SWEEP_LINK := $(SWEEP_OBJS) $(PT_OBJS) $(B)/obj/app/session.o $(B)/obj/app/options.o $(PLATFORM_OBJS) $(B)/libcumulo.a
 $(B)/cumulo-sweep: $(SWEEP_LINK)
 	$(CC) -o $@ $(SWEEP_LINK) $(PLATFORM_LIBS) $(LIB_LIBS) -lpthread
 ALL_BINS += $(B)/cumulo-sweep
