@@ -188,7 +188,8 @@ void cu_pass_energy_update(cu_pass_energy *p, const cu_gpu_scene *ctx)
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (e != GL_NO_ERROR) {
         free(px4);
-        cu_gpu_log(ctx, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled", e);
+        cu_gpu_log(ctx, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled",
+                   e);
         return;
     }
     /* pixel footprints on the plane through the centre */
