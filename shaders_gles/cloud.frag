@@ -6,7 +6,7 @@
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
 // inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
-// model's energy closure, src/energy.c: sunlight terms apart instead of a colour).
+// model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
@@ -17,7 +17,7 @@
 #include "density.glsl"
 #include "sunmap.glsl"
 #if MS_MODE >= 2
-uniform vec2 u_ms_gain;                 // energy closure (src/energy.c): <= 1, on reflected and transmitted light
+uniform vec2 u_ms_gain;                 // energy closure (pass_energy.c): <= 1, on reflected and transmitted light
 #if ENERGY_PASS
 uniform bool u_budget_view;             // the closure's view from the sun: columns' optical depth and slab angle
 #endif
@@ -53,7 +53,7 @@ uniform vec3 u_sky_rad;        // mean radiance of the sky (upper hemisphere)
 uniform vec3 u_ground_rad;     // radiance of the ground (lower hemisphere; the sky colour for a constant sky)
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
 uniform float u_ms_g;          // anisotropy of the octave phase functions
-uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (renderer.c: out_scale)
+uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
 out vec4 o_color;
 
 
@@ -85,9 +85,8 @@ float ph_oct[MS_OCTAVES];
 
 // Light a segment of optical depth dt scatters toward its entry, per unit of source: int_0^dt e^-u S(u) du with S
 // log-linear from S0 to S1, S(u) = S0 e^(-b u / dt), b = ln(S0 / S1): S0 dt (1 - e^-(dt + b)) / (dt + b). The
-// sunlit source falls like e^(-tau_sun) across a segment, by e^3 in a thick one, where the mean of the two ends
-// (the old form) doubled the single scattering seen through a tau = 8 slab from below with 5 segments. Falls back
-// to the mean of the ends where a channel is zero.
+// sunlit source falls like e^(-tau_sun) across a segment, steeply in a thick one, which the mean of the two ends
+// misses (docs/gpu_notes.md). Falls back to the mean of the ends where a channel is zero.
 vec3 segment_source(float dt, vec3 S0, vec3 S1)
 {
     vec3 r = vec3(0.0);
@@ -96,8 +95,7 @@ vec3 segment_source(float dt, vec3 S0, vec3 S1)
         float a = S0[c], b1 = S1[c];
         if (a > 1e-30 && b1 > 1e-30) {
             // S0 dt (1 - e^-x) / x with S0 e^-x = S1 e^-dt, written so that nothing overflows: a steeply rising
-            // source (x << 0) would make e^-x overflow, and log(a / b1) underflow (found as NaN by
-            // test_segment_integration)
+            // source (x << 0) would make e^-x overflow, and log(a / b1) underflow; near x = 0 its series
             float x = dt + (log(a) - log(b1));
             r[c] = abs(x) > 1e-3 ? dt * (a - b1 * exp(-dt)) / x : a * dt * (1.0 - 0.5 * x + x * x / 6.0);
         } else {
@@ -177,8 +175,8 @@ void main()
 #else
     vec3 dir = normalize(v_pos - u_cam);
 #endif
-    // Start the ray near the cloud: the quadratic's terms grow like the camera distance squared, and fp32 chords
-    // from 100 km lose 3 digits (tests/test_precision.c: 9e-4 relative; 4e-8 with the shift). t counts from ro.
+    // Start the ray near the cloud: the quadratic's terms grow like the camera distance squared, so fp32 chords
+    // from far away lose digits (tests/test_precision.c). t counts from ro.
     float t_base = max(dot(-u_cam, dir) - u_bound_R, 0.0);
     vec3 ro = u_cam + dir * t_base;
     cast_ray(ro, dir);
@@ -242,8 +240,8 @@ void main()
             float dtau = x * 0.5 * (ke_prev + ke);        // eq. 3.22
             vec3 S = source(p, ke, ph0);
 #if INTEGRATION_KOL
-            // eq. 3.20: trapezoids of F = k_e S e^-tau. Overestimates a segment that is optically thick by
-            // (dtau/2) coth(dtau/2): 7% at dtau = 0.9, 66% at dtau = 3.
+            // eq. 3.20: trapezoids of F = k_e S e^-tau. Overestimates a segment that is optically thick by the
+            // factor (dtau/2) coth(dtau/2).
             L += x * 0.5 * (ke_prev * S_prev * exp(-taup) + ke * S * exp(-(taup + DM_SCALE * dtau)));
 #else
             // Energy-conserving: the extinction integrated exactly, the source per unit extinction S log-linear
@@ -261,8 +259,7 @@ void main()
         // The interval's multiple scattering, evaluated once at its entry (Kol 3.4.4). C is already the radiance
         // leaving the fitted slab, so it is weighted by the interval's opacity relative to the slab's own along the
         // view (1 for a ray that crosses the cloud as it crosses the slab; small where it grazes a thin edge). Kol
-        // blends with the interval's opacity alone, which takes the slab's thickness into account twice (-11 % at
-        // tau 4 seen from above).
+        // blends with the interval's opacity alone, which takes the slab's thickness into account twice.
         float slab_alpha;
         bool lit_side;
         float ms = ms_slab(p_entry, dir, mu, slab_alpha, lit_side);

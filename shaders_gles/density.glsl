@@ -92,8 +92,8 @@ float extinction(vec3 p, float t)
 // Knots of the quadrature over an in-cloud interval [a, a + len] with n segments. The boundary ramps (density rising
 // over h at each end) get segments of their own, in proportion to their length but at least one: the ramp/core
 // border is then a knot, and with a thin boundary its one trapezoid is exact for the symmetric sigmoid, where a long
-// segment from the surface into the core took the rise for a linear one over the whole segment (-24 % tau at h = 1 m
-// and 5 segments). With a thick noisy boundary the ramps keep their share of the samples (the noise lives there).
+// segment from the surface into the core would take the rise for a linear one over the whole segment. With a thick
+// noisy boundary the ramps keep their share of the samples (the noise lives there).
 // Exact along the normal of a lone ellipsoid; along oblique rays the ramp is longer and the core's first segments
 // see the rest of it. The core's segments grow geometrically by r (1: uniform).
 struct knots {

@@ -8,7 +8,7 @@ uniform vec3 u_sun_dir;
 uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
 uniform float u_sun_disk_max;  // radiance cap of the disk (fp16 targets overflow at 65504)
 uniform vec3 u_ground;         // ground radiance
-uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (renderer.c: out_scale)
+uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
 #if SKY_CONSTANT
 uniform vec3 u_sky_color;
 #else

@@ -1,5 +1,6 @@
 /* src/gl.c: GL entry-point loading and shader compilation with file-named errors (see gl.h). */
 #include "gl.h"
+#include "error.h"
 #include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,12 +23,10 @@ int cu_gl_load(cu_gl *gl, cu_get_proc_fn get, void *user, cu_error *err)
         get = dlsym_loader;
     memset(gl, 0, sizeof *gl);
     void *p;
-#define CU_GL_LOAD(name, NAME)                                                                   \
-    p = get(user, "gl" #name);                                                                   \
-    if (!p) {                                                                                    \
-        snprintf(err->msg, sizeof err->msg, "GL entry point gl%s is missing (is a GLES 3 context current?)", #name); \
-        return 1;                                                                                \
-    }                                                                                            \
+#define CU_GL_LOAD(name, NAME)                                                                        \
+    p = get(user, "gl" #name);                                                                        \
+    if (!p)                                                                                           \
+        return cu_fail(err, "GL entry point gl%s is missing (is a GLES 3 context current?)", #name); \
     memcpy(&gl->name, &p, sizeof p);
     CU_GL_FUNCS(CU_GL_LOAD)
 #undef CU_GL_LOAD
@@ -65,7 +64,7 @@ static GLuint compile(const cu_gl *gl, GLenum type, const cu_shader_src *src, co
     if (!parts || !dirs) {
         free(parts);
         free(dirs);
-        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s: out of memory", src->name);
+        cu_fail(err, "shaders_gles/%s: out of memory", src->name);
         return 0;
     }
     int n = 0, nd = 0, nfile = 0;
@@ -82,7 +81,7 @@ static GLuint compile(const cu_gl *gl, GLenum type, const cu_shader_src *src, co
         if (sscanf(src->lines[i] + 10, "%63[^\"]", name) == 1)
             inc = cu_shader_find(name);
         if (!inc) {
-            snprintf(err->msg, sizeof err->msg, "shaders_gles/%s:%d: cannot include '%s'", src->name, i + 1, name);
+            cu_fail(err, "shaders_gles/%s:%d: cannot include '%s'", src->name, i + 1, name);
             free(parts);
             free(dirs);
             return 0;
@@ -109,7 +108,7 @@ static GLuint compile(const cu_gl *gl, GLenum type, const cu_shader_src *src, co
         gl->GetShaderInfoLog(sh, sizeof log, NULL, log);
         for (char *c = log; *c; c++)
             if (*c == '\n') *c = ' ';
-        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s (sources %s): compile failed: %s", src->name, names, log);
+        cu_fail(err, "shaders_gles/%s (sources %s): compile failed: %s", src->name, names, log);
         gl->DeleteShader(sh);
         return 0;
     }
@@ -120,7 +119,7 @@ GLuint cu_gl_program(const cu_gl *gl, const char *vs_name, const char *fs_name, 
 {
     const cu_shader_src *vs = cu_shader_find(vs_name), *fs = cu_shader_find(fs_name);
     if (!vs || !fs) {
-        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s: not embedded in this build", vs ? fs_name : vs_name);
+        cu_fail(err, "shaders_gles/%s: not embedded in this build", vs ? fs_name : vs_name);
         return 0;
     }
     GLuint v = compile(gl, GL_VERTEX_SHADER, vs, defines, err);
@@ -144,7 +143,7 @@ GLuint cu_gl_program(const cu_gl *gl, const char *vs_name, const char *fs_name, 
         gl->GetProgramInfoLog(p, sizeof log, NULL, log);
         for (char *c = log; *c; c++)
             if (*c == '\n') *c = ' ';
-        snprintf(err->msg, sizeof err->msg, "shaders_gles/%s + %s: link failed: %s", vs_name, fs_name, log);
+        cu_fail(err, "shaders_gles/%s + %s: link failed: %s", vs_name, fs_name, log);
         gl->DeleteProgram(p);
         return 0;
     }

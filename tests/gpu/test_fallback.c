@@ -55,11 +55,11 @@ static void render_child(const char *hide, const char *scene, const char *const 
             fprintf(stderr, "child: %s\n", c.err);
             _exit(1);
         }
-        r.float_rt = c.r->float_rt;
-        r.half_rt = c.r->half_rt;
-        r.shadow = c.r->shadow;
-        r.ms_mode = c.r->ms_mode;
-        r.rgba8 = c.r->hdr_format == GL_RGBA8;
+        r.float_rt = c.r->ctx.float_rt;
+        r.half_rt = c.r->ctx.half_rt;
+        r.shadow = c.r->ctx.shadow;
+        r.ms_mode = c.r->ctx.ms_mode;
+        r.rgba8 = c.r->ctx.hdr_format == GL_RGBA8;
         tr_read_rgba8(&c, r.px);
         tr_close(&c);
         _exit(write(p[1], &r, sizeof r) == (ssize_t)sizeof r ? 0 : 1);

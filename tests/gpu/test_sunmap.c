@@ -27,17 +27,17 @@ static void read_map(tr_ctx *c, const char *scene, const char *const *sets, map 
     if (tr_render(c, scene, sets))
         fail_msg("%s", c->err);
     cu_renderer *r = c->r;
-    assert_int_equal(r->shadow, CU_SHADOW_PEEL);
+    assert_int_equal(r->ctx.shadow, CU_SHADOW_PEEL);
     m->r = r;
-    m->size = r->sun_size;
-    m->tiles = r->sun_intervals;
+    m->size = r->ctx.sun_size;
+    m->tiles = r->ctx.sun.intervals;
     int w = m->size * r->scene.sun_intervals, h = m->size;
     m->layers = malloc(sizeof(float) * 4 * (size_t)w * h);
     m->tau = malloc(sizeof(float) * 4 * (size_t)w * h);
     void *rb = c->be->get_proc_address(c->disp, "glReadBuffer");
     void (*read_buffer)(GLenum);
     memcpy(&read_buffer, &rb, sizeof rb);
-    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->sun_opacity_fbo);
+    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->pass_sun.map.fbo);
     read_buffer(GL_COLOR_ATTACHMENT0);
     r->gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, m->layers);
     read_buffer(GL_COLOR_ATTACHMENT1);
@@ -63,7 +63,7 @@ static void texel_ray(const map *m, int x, int y, vec3 *o, vec3 *d)
     const cu_renderer *r = m->r;
     double R = cu_sun_radius(&r->cloud);
     double u = ((x + 0.5) / m->size * 2 - 1) * R, v = ((y + 0.5) / m->size * 2 - 1) * R;
-    *o = v3_add(v3_add(v3_scale(r->sun_right, u), v3_scale(r->sun_up, v)), v3_scale(r->sky.sun_dir, 2 * R));
+    *o = v3_add(v3_add(v3_scale(r->ctx.sun_right, u), v3_scale(r->ctx.sun_up, v)), v3_scale(r->sky.sun_dir, 2 * R));
     *d = v3_scale(r->sky.sun_dir, -1);
 }
 
@@ -202,16 +202,16 @@ static void read_smap(tr_ctx *c, const char *scene, const char *const *sets, int
     if (tr_render(c, scene, all))
         fail_msg("%s", c->err);
     cu_renderer *r = c->r;
-    assert_int_equal(r->shadow, method);
+    assert_int_equal(r->ctx.shadow, method);
     m->r = r;
     m->method = method;
-    m->size = r->sun_size;
-    m->tiles = r->sun_map_tiles;
+    m->size = r->ctx.sun_size;
+    m->tiles = r->pass_sun.tiles;
     assert_int_equal(m->tiles, method == CU_SHADOW_OSM ? 1 + r->scene.osm_slices / 4
                                                        : 1 + r->scene.fom_coefficients / 2);
     int w = m->size * m->tiles, h = m->size;
     m->img = malloc(sizeof(float) * 4 * (size_t)w * h);
-    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->sun_fbo);
+    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->pass_sun.map.fbo);
     r->gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, m->img);
     assert_int_equal(r->gl.GetError(), GL_NO_ERROR);
     for (long i = 0; i < 4L * w * h; i++)

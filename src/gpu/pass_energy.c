@@ -1,10 +1,9 @@
-/* src/energy.c: the slab model's energy closure.
+/* src/gpu/pass_energy.c: the slab model's energy closure.
  *
  * Why: the slab model is local. Each point of a cloud is lit as if it lay in an infinite slab fitted around it, so a
  * finite cloud can send out more light than it intercepts: light that leaves a real cloud through its sides is also
- * counted at its faces, and the blurred slab maps light the flanks as if they faced the sun. A sphere of optical
- * diameter 69 (tests/test_ms.c) scattered 1.06 times the sunlight it intercepts with ms.blur = 200 m, 2.1 times with
- * 800 m and 1.9 times with the collector search; scenes/cumulus.scene 1.6 times (measured with 100 directions).
+ * counted at its faces, and the blurred slab maps light the flanks as if they faced the sun (docs/gpu_notes.md has
+ * the measured excess).
  *
  * What: when the sun or the clouds change, the cloud's sunlit terms are rendered small (EN_SIZE pixels square,
  * cloud.frag with ENERGY_PASS) from EN_VIEWS directions in bands of the scattering angle about the sun. Radiance
@@ -13,28 +12,29 @@
  *   - multiple scattering, reflected and transmitted apart (the eye on the lit side of the fitted slab or not):
  *     intensity x the cell's solid angle (P_r, P_t);
  *   - single scattering (P_ss): the intensity is the phase function P~(Theta) times a factor smooth in direction, so
- *     it is weighted by the integral of P~ over the cell over P~ at the view (a plain rule put the forward lobe's
- *     peak on a whole cell: +25 % for the thin layer of scenes/glory.scene).
+ *     it is weighted by the integral of P~ over the cell over P~ at the view (a plain rule would put the forward
+ *     lobe's peak on a whole cell).
  * A budget view from the sun (EN_SUN_SIZE square) gives per column its optical depth tau and the sun's angle thL to
  * the slab fitted where it enters: what the chopped medium intercepts, 1 - e^-(1-f) tau (P_in), and what a slab of
  * thickness tau cos(thL) lit at thL reflects and transmits by multiple scattering (B_r, B_t: the tables' own budget,
  * cu_slab_model_ms_budget). Reflected and transmitted light are each scaled down to their budget, then both together
- * to what single scattering leaves, P_in - P_ss. (The column budget alone let a sphere's total exceed P_in by 1.6 %,
- * its single scattering being larger than a slab's; the total alone would let the errors of P_ss decide, and a
- * single gain darkened the thick base of scenes/sweep_thick_below.scene, whose transmitted light was within budget.)
- * A cloud within its budgets is left alone; a wide flat cloud keeps gains 1. The forward peak is left out on both
- * sides (its energy is exact by construction, cloud.frag). One pair of gains per scene: a field of clouds shares it.
+ * to what single scattering leaves, P_in - P_ss: the column budget alone does not bound a cloud whose single
+ * scattering exceeds a slab's, the total alone would let the errors of P_ss decide, and a single gain would darken
+ * transmitted light that was within its budget. A cloud within its budgets is left alone; a wide flat cloud keeps
+ * gains 1. The forward peak is left out on both sides (its energy is exact by construction, cloud.frag). One pair of
+ * gains per scene: a field of clouds shares it.
  *
- * Cost: EN_VIEWS x 16 x 16 + 64 x 64 = 11k cloud fragments and two read-backs (bench_e8 at 640x480 on llvmpipe:
- * about +10 % on a frame that redoes the sun pass: scripts/bench_light.sh), only when the clouds change or the sun
- * has moved by 1 deg. With 24 x 24 views, 6 azimuths and a 96 x 96 budget view the gains moved by at most 0.03. */
-#include "energy.h"
+ * Cost: EN_VIEWS x 16 x 16 + 64 x 64 cloud fragments and two read-backs, only when the clouds change or the sun has
+ * moved by 1 deg. */
+#include "pass_energy.h"
+#include "error.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define EN_SIZE 16
-#define EN_SUN_SIZE 64 /* the budget view from the sun: its columns set the budgets, so finer (silhouette ~0.1 %) */
+#define EN_SUN_SIZE 64 /* the budget view from the sun: its columns set the budgets, so finer than the views */
 #define EN_BANDS 8
 #define EN_VIEWS 26
 #define EN_DIST 64.0 /* camera distance in bounding radii: rays parallel to 1/64 rad, footprints equal to 1.6 % */
@@ -42,7 +42,7 @@
 static const double BAND_EDGE[EN_BANDS + 1] = {0, 15, 40, 65, 90, 115, 140, 165, 180};
 static const int BAND_NPHI[EN_BANDS] = {1, 4, 4, 4, 4, 4, 4, 1};
 typedef char band_views_add_up[1 + 6 * 4 + 1 == EN_VIEWS ? 1 : -1];
-typedef char band_weights_fit[EN_BANDS <= (int)(sizeof(((cu_renderer *)0)->energy_ss_w) / sizeof(double)) ? 1 : -1];
+typedef char band_weights_fit[EN_BANDS == CU_ENERGY_BANDS ? 1 : -1];
 
 static double band_node(int b) /* the view's scattering angle in band b, radians: the poles, else mid-cosine */
 {
@@ -62,11 +62,11 @@ static double phase_at(const cu_phase_table *t, double x)
     return t->rgb[3 * j + 1] + (u - j) * (t->rgb[3 * (j + 1) + 1] - t->rgb[3 * j + 1]);
 }
 
-void cu_energy_phase_weights(cu_renderer *r, const cu_phase_table *t)
+static void phase_weights(cu_pass_energy *p, const cu_phase_table *t)
 {
     double h = CU_PI / (t->n - 1);
     for (int b = 0; b < EN_BANDS; b++) {
-        /* trapezoids of P~ sin(Theta) on the table's grid (0.088 deg), cut at the band edges a and z */
+        /* trapezoids of P~ sin(Theta) on the table's grid, cut at the band edges a and z */
         double a = BAND_EDGE[b] * CU_PI / 180, z = BAND_EDGE[b + 1] * CU_PI / 180, sum = 0;
         double prev_x = a, prev_f = phase_at(t, a) * sin(a);
         for (int i = (int)floor(a / h) + 1; prev_x < z; i++) {
@@ -77,55 +77,38 @@ void cu_energy_phase_weights(cu_renderer *r, const cu_phase_table *t)
         }
         double p_node = phase_at(t, band_node(b));
         /* per view: the band's integral of P~ shared by its views, over P~ at the view */
-        r->energy_ss_w[b] = p_node > 0 ? 2.0 * CU_PI * sum / BAND_NPHI[b] / p_node : 0.0;
+        p->ss_w[b] = p_node > 0 ? 2.0 * CU_PI * sum / BAND_NPHI[b] / p_node : 0.0;
     }
 }
 
-static int efail(cu_error *err, const char *what)
+int cu_pass_energy_create(cu_pass_energy *p, const cu_gpu_scene *ctx, const cu_phase_table *t, const char *fs_defs,
+                          cu_error *err)
 {
-    snprintf(err->msg, sizeof err->msg, "energy closure: %s", what);
-    return 1;
-}
-
-int cu_energy_init(cu_renderer *r, const char *fs_defs, cu_error *err)
-{
-    r->ms_gain[0] = r->ms_gain[1] = 1.0;
-    r->energy_valid = 0;
-    if ((r->ms_mode != CU_MS_SLAB && r->ms_mode != CU_MS_COLLECTOR) || !r->scene.ms_closure)
+    memset(p, 0, sizeof *p);
+    p->gain[0] = p->gain[1] = 1.0;
+    phase_weights(p, t);
+    if ((ctx->ms_mode != CU_MS_SLAB && ctx->ms_mode != CU_MS_COLLECTOR) || !ctx->scene->ms_closure)
         return 0;
-    cu_gl *gl = &r->gl;
+    const cu_gl *gl = ctx->gl;
     char defs[2048];
     if (snprintf(defs, sizeof defs, "%s#define ENERGY_PASS 1\n", fs_defs) >= (int)sizeof defs)
-        return efail(err, "shader defines too long");
-    if (!(r->prog_energy = cu_gl_program(gl, "fullscreen.vert", "cloud.frag", defs, err)))
+        return cu_fail(err, "energy closure: shader defines too long");
+    if (!(p->prog = cu_gl_program(gl, "fullscreen.vert", "cloud.frag", defs, err)))
         return 1;
+    cu_shading_locs_get(gl, p->prog, &p->locs);
+    p->budget_view = cu_gpu_loc(gl, p->prog, "u_budget_view");
     /* the slab model already needs half-float targets; RGBA32F where it renders, for the sums' precision */
-    GLenum fmt = r->float_rt ? GL_RGBA32F : GL_RGBA16F;
-    gl->GenTextures(1, &r->energy_tex);
-    gl->BindTexture(GL_TEXTURE_2D, r->energy_tex);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, (GLint)fmt, EN_SIZE * EN_VIEWS + EN_SUN_SIZE, EN_SUN_SIZE, 0, GL_RGBA,
-                   fmt == GL_RGBA32F ? GL_FLOAT : GL_HALF_FLOAT, NULL);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->GenFramebuffers(1, &r->energy_fbo);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->energy_fbo);
-    gl->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->energy_tex, 0);
-    GLenum st = gl->CheckFramebufferStatus(GL_FRAMEBUFFER);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (st != GL_FRAMEBUFFER_COMPLETE) {
-        snprintf(err->msg, sizeof err->msg, "energy closure: framebuffer incomplete (0x%x)", st);
-        return 1;
-    }
-    return 0;
+    cu_target_desc d = {.name = "energy closure", .width = EN_SIZE * EN_VIEWS + EN_SUN_SIZE, .height = EN_SUN_SIZE,
+                        .format = ctx->float_rt ? GL_RGBA32F : GL_RGBA16F, .colors = 1};
+    return cu_target_create(&p->target, gl, &d, err);
 }
 
-void cu_energy_delete(cu_renderer *r)
+void cu_pass_energy_destroy(cu_pass_energy *p, const cu_gl *gl)
 {
-    cu_gl *gl = &r->gl;
-    if (r->prog_energy) gl->DeleteProgram(r->prog_energy);
-    if (r->energy_tex) gl->DeleteTextures(1, &r->energy_tex);
-    if (r->energy_fbo) gl->DeleteFramebuffers(1, &r->energy_fbo);
-    r->prog_energy = r->energy_tex = r->energy_fbo = 0;
+    if (p->prog)
+        gl->DeleteProgram(p->prog);
+    p->prog = 0;
+    cu_target_delete(&p->target, gl);
 }
 
 /* The views: direction d the light leaves toward (scattering angle Theta from the sunbeam -s), the band it stands
@@ -148,33 +131,33 @@ static void views(vec3 s, vec3 right, vec3 up, vec3 *d, int *band, double *omega
     }
 }
 
-void cu_energy_update(cu_renderer *r)
+void cu_pass_energy_update(cu_pass_energy *p, const cu_gpu_scene *ctx)
 {
-    if (!r->prog_energy || !(r->cloud.ke > 0))
+    if (!p->prog || !(ctx->cloud->ke > 0))
         return;
-    /* The gains change smoothly with the sun (0.05 deg steps: no pixel by more than 0.5 %, test_ms): kept while the
-     * sun stays within 1 deg of where they were measured, so a knob turned slowly pays for them once a degree. */
-    if (r->energy_valid && v3_dot(r->energy_sun, r->sky.sun_dir) > cos(CU_PI / 180))
+    /* The gains change smoothly with the sun (test_ms bounds the change per step): kept while the sun stays within
+     * 1 deg of where they were measured, so a knob turned slowly pays for them once a degree. */
+    if (p->valid && v3_dot(p->sun, ctx->sun_dir) > cos(CU_PI / 180))
         return;
-    r->energy_valid = 1;
-    r->energy_sun = r->sky.sun_dir;
-    r->ms_gain[0] = r->ms_gain[1] = 1.0;
-    cu_gl *gl = &r->gl;
+    p->valid = 1;
+    p->sun = ctx->sun_dir;
+    p->gain[0] = p->gain[1] = 1.0;
+    const cu_gl *gl = ctx->gl;
     vec3 d[EN_VIEWS];
     int band[EN_VIEWS];
     double omega[EN_VIEWS];
-    views(r->sky.sun_dir, r->sun_right, r->sun_up, d, band, omega);
-    double R = r->cloud.bound_radius, D = EN_DIST * R;
+    views(ctx->sun_dir, ctx->sun_right, ctx->sun_up, d, band, omega);
+    double R = ctx->cloud->bound_radius, D = EN_DIST * R;
     double fov = 2.0 * atan(R / D);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->energy_fbo);
+    cu_shading_bind(ctx);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, p->target.fbo);
     gl->Viewport(0, 0, EN_SIZE * EN_VIEWS + EN_SUN_SIZE, EN_SUN_SIZE);
     gl->Disable(GL_DEPTH_TEST);
     gl->Disable(GL_BLEND);
     gl->Disable(GL_CULL_FACE);
     gl->ClearColor(0, 0, 0, 0);
     gl->Clear(GL_COLOR_BUFFER_BIT);
-    gl->BindVertexArray(r->empty_vao);
-    GLint budget_loc = gl->GetUniformLocation(r->prog_energy, "u_budget_view");
+    gl->BindVertexArray(ctx->empty_vao);
     for (int k = 0; k <= EN_VIEWS; k++) { /* the views, then the budget view from the sun (= the last view's) */
         /* the camera on the side the light leaves toward: at D d, looking along -d */
         vec3 dk = d[k < EN_VIEWS ? k : EN_VIEWS - 1];
@@ -184,14 +167,11 @@ void cu_energy_update(cu_renderer *r)
         float vpf[16], inv[16];
         m4_to_float(vp, vpf);
         m4_to_float(m4_inverse(vp), inv);
-        if (k == 0) { /* everything but the camera is the same for all views */
-            cu_set_cloud_uniforms(r, r->prog_energy, cam, vpf, inv);
-        } else {
-            gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_energy, "u_viewproj"), 1, GL_FALSE, vpf);
-            gl->UniformMatrix4fv(gl->GetUniformLocation(r->prog_energy, "u_inv_viewproj"), 1, GL_FALSE, inv);
-            gl->Uniform3f(gl->GetUniformLocation(r->prog_energy, "u_cam"), (float)cam.x, (float)cam.y, (float)cam.z);
-        }
-        gl->Uniform1i(budget_loc, k == EN_VIEWS);
+        if (k == 0) /* everything but the camera is the same for all views */
+            cu_shading_uniforms(ctx, p->prog, &p->locs, cam, vpf, inv);
+        else
+            cu_shading_camera(ctx, &p->locs, cam, vpf, inv);
+        gl->Uniform1i(p->budget_view, k == EN_VIEWS);
         gl->Viewport(EN_SIZE * k, 0, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE, k == EN_VIEWS ? EN_SUN_SIZE : EN_SIZE);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -199,7 +179,7 @@ void cu_energy_update(cu_renderer *r)
     float *px4 = malloc(sizeof(float) * 4 * ((size_t)strip * EN_SIZE + (size_t)ns)), *sun4 = px4 + 4 * strip * EN_SIZE;
     if (!px4) {
         gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-        cu_log(r, CU_LOG_WARN, "energy closure: out of memory: multiple scattering unscaled");
+        cu_gpu_log(ctx, CU_LOG_WARN, "energy closure: out of memory: multiple scattering unscaled");
         return;
     }
     gl->ReadPixels(0, 0, strip, EN_SIZE, GL_RGBA, GL_FLOAT, px4);
@@ -208,17 +188,18 @@ void cu_energy_update(cu_renderer *r)
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (e != GL_NO_ERROR) {
         free(px4);
-        cu_log(r, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled", e);
+        cu_gpu_log(ctx, CU_LOG_WARN, "energy closure: read-back failed (GL error 0x%x): multiple scattering unscaled",
+                   e);
         return;
     }
     /* pixel footprints on the plane through the centre */
-    double p_ss = 0, p_r = 0, p_t = 0, p_in = 0, b_r = 0, b_t = 0, f = r->peak_f[1];
+    double p_ss = 0, p_r = 0, p_t = 0, p_in = 0, b_r = 0, b_t = 0, f = ctx->peak_f[1];
     for (int k = 0; k < EN_VIEWS; k++) {
         double a = (2.0 * R / EN_SIZE) * (2.0 * R / EN_SIZE);
         for (int y = 0; y < EN_SIZE; y++)
             for (int x = 0; x < EN_SIZE; x++) {
                 const float *q = px4 + 4 * ((size_t)y * strip + (size_t)(EN_SIZE * k + x));
-                p_ss += r->energy_ss_w[band[k]] * q[0] * a;
+                p_ss += p->ss_w[band[k]] * q[0] * a;
                 p_r += omega[k] * q[1] * a;
                 p_t += omega[k] * q[2] * a;
             }
@@ -229,7 +210,7 @@ void cu_energy_update(cu_renderer *r)
         double tau = sun4[4 * i], mu0 = sun4[4 * i + 1], up, down;
         if (!(tau > 0))
             continue;
-        cu_slab_model_ms_budget(r->slab_model, tau * mu0 / CU_SLAB_KE_REF, acos(fmin(mu0, 1.0)) * 180 / CU_PI, &up,
+        cu_slab_model_ms_budget(ctx->slab.model, tau * mu0 / CU_SLAB_KE_REF, acos(fmin(mu0, 1.0)) * 180 / CU_PI, &up,
                                 &down);
         p_in += (1.0 - exp(-(1.0 - f) * tau)) * a;
         b_r += up * a;
@@ -237,7 +218,7 @@ void cu_energy_update(cu_renderer *r)
     }
     free(px4);
     if (!(isfinite(p_ss) && isfinite(p_r) && isfinite(p_t) && isfinite(p_in) && isfinite(b_r) && isfinite(b_t))) {
-        cu_log(r, CU_LOG_WARN, "energy closure: non-finite powers: multiple scattering unscaled");
+        cu_gpu_log(ctx, CU_LOG_WARN, "energy closure: non-finite powers: multiple scattering unscaled");
         return;
     }
     /* each side within its column budget, then the total within what single scattering leaves */
@@ -247,8 +228,8 @@ void cu_energy_update(cu_renderer *r)
         g_r *= left / ms;
         g_t *= left / ms;
     }
-    r->ms_gain[0] = g_r;
-    r->ms_gain[1] = g_t;
-    cu_log(r, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple reflected %.4g of %.4g, "
+    p->gain[0] = g_r;
+    p->gain[1] = g_t;
+    cu_gpu_log(ctx, CU_LOG_DEBUG, "energy closure: intercepted %.4g m^2, single %.4g, multiple reflected %.4g of %.4g, "
            "transmitted %.4g of %.4g: gains %.4f %.4f", p_in, p_ss, p_r, b_r, p_t, b_t, g_r, g_t);
 }

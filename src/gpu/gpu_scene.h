@@ -1,0 +1,106 @@
+/* src/gpu/gpu_scene.h: the frame context: what the passes read (the uploaded scene and its textures, the sun's
+ * direction and axes, what earlier passes published) and the uniforms they share. The renderer fills it and orders
+ * the passes; a pass reads it and never sees the renderer. */
+#ifndef CU_GPU_SCENE_H
+#define CU_GPU_SCENE_H
+#include "density.h"
+#include "gl.h"
+#include "noise.h"
+#include "scene.h"
+#include "sky.h"
+#include "slabmodel.h"
+#include "vecmath.h"
+
+struct cu_collector;
+
+/* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
+enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4 };
+
+/* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
+ * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
+typedef struct cu_sun_maps {
+    GLuint map, tau;
+    int intervals;
+} cu_sun_maps;
+
+/* What the slab pass publishes (pass_slab.c): the fitted tables, the slab maps from the sun [0] and the zenith [1],
+ * the zenith map's axes. model is NULL when the multiple-scattering mode is not the slab model. */
+typedef struct cu_slab_maps {
+    const cu_slab_model *model;
+    const struct cu_collector *collector; /* collector mode only */
+    GLuint tab, a[2], n[2], coll;
+    vec3 sky_right, sky_up;
+} cu_slab_maps;
+
+/* The frame's camera, cloud-local (the big world offset removed in double precision on the CPU). */
+typedef struct cu_camera {
+    vec3 pos;
+    double znear;
+    float vp[16], inv_vp[16];
+    float inv_rot[16];       /* clip space to directions, the camera at the origin: the sky's */
+} cu_camera;
+
+typedef struct cu_gpu_scene {
+    const cu_gl *gl;
+    cu_log_fn log;
+    void *log_user;
+    int float_rt, half_rt;   /* RGBA32F, RGBA16F colour-renderable */
+
+    const cu_scene *scene;
+    const cu_cloud *cloud;
+    const cu_sky *sky;
+    const cu_noise *noise;
+    int shadow;              /* the sun-map method in use (the scene's, or front when the context cannot) */
+    int ms_mode;             /* the multiple-scattering mode in use */
+    double peak_f[3];        /* weight of the chopped Mie peak per channel (0: analytic phase) */
+    double white[3];         /* the tone mapper's white balance (sky.h) */
+
+    GLuint noise_tex, phase_tex;
+    GLuint hull_vbo, hull_ibo, inst_vbo, hull_vao, empty_vao; /* instanced ellipsoid hulls; a VAO for full-screen */
+    int hull_indices;
+
+    /* The sun's frame: the sun maps are orthographic views along -sun_dir, 2 sun_R square, sun_size texels. */
+    vec3 sun_dir, sun_right, sun_up;
+    double sun_R;
+    int sun_size;
+
+    cu_camera camera;        /* this frame's */
+    cu_sun_maps sun;         /* published by the sun pass */
+    cu_slab_maps slab;       /* published by the slab pass */
+    double ms_gain[2];       /* published by the energy closure: gains on reflected, transmitted multiple scattering */
+    GLenum hdr_format;       /* published by the tone map: the HDR target's format */
+} cu_gpu_scene;
+
+void cu_gpu_log(const cu_gpu_scene *ctx, cu_log_level level, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Sets sun_dir (from the sky), its axes and the maps' half-size. */
+void cu_gpu_scene_set_sun(cu_gpu_scene *ctx);
+
+/* The uniform location in p, or -1 (setting -1 is a no-op: a variant that compiled a uniform out costs nothing). */
+GLint cu_gpu_loc(const cu_gl *gl, GLuint p, const char *name);
+/* Points sampler `name` of p at texture unit `unit`, once after linking (a program keeps its uniforms). */
+void cu_gpu_unit(const cu_gl *gl, GLuint p, const char *name, int unit);
+
+/* density.glsl (and sun_depth.frag's ellipsoids). Looking up also points u_noise at CU_UNIT_NOISE. */
+typedef struct cu_density_locs {
+    GLint ell_c, ell_ir, ke, h, noise_freq, noise_offset, noise_mean;
+} cu_density_locs;
+void cu_density_locs_get(const cu_gl *gl, GLuint p, cu_density_locs *l);
+void cu_density_uniforms(const cu_gpu_scene *ctx, const cu_density_locs *l);
+
+/* The sun's frame (sunmap.glsl, the sun passes, sky.frag's u_sun_dir). Looking up also points the sun-map samplers
+ * at their units. */
+typedef struct cu_sun_locs {
+    GLint dir, right, up, R, size, intervals;
+} cu_sun_locs;
+void cu_sun_locs_get(const cu_gl *gl, GLuint p, cu_sun_locs *l);
+/* The one place the sun's direction and axes reach the shaders. */
+void cu_sun_uniforms(const cu_gpu_scene *ctx, const cu_sun_locs *l);
+
+/* What the sky and cloud passes multiply their radiance by (see gpu_scene.c). */
+void cu_out_scale(const cu_gpu_scene *ctx, float s[3]);
+#endif

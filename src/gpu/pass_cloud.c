@@ -1,0 +1,87 @@
+/* src/gpu/pass_cloud.c: the depth pre-pass and the cloud pass (see pass_cloud.h). */
+#include "pass_cloud.h"
+#include <string.h>
+
+int cu_pass_cloud_create(cu_pass_cloud *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
+                         cu_error *err)
+{
+    const cu_gl *gl = ctx->gl;
+    memset(p, 0, sizeof *p);
+    if (!(p->prog_depth = cu_gl_program(gl, "hull.vert", "depth.frag", hull_defs, err)) ||
+        !(p->prog_hull = cu_gl_program(gl, "hull.vert", "cloud.frag", hull_defs, err)) ||
+        !(p->prog_fs = cu_gl_program(gl, "fullscreen.vert", "cloud.frag", fs_defs, err)))
+        return 1;
+    p->depth_viewproj = cu_gpu_loc(gl, p->prog_depth, "u_viewproj");
+    cu_shading_locs_get(gl, p->prog_hull, &p->hull);
+    cu_shading_locs_get(gl, p->prog_fs, &p->fs);
+    return 0;
+}
+
+void cu_pass_cloud_destroy(cu_pass_cloud *p, const cu_gl *gl)
+{
+    GLuint progs[3] = {p->prog_depth, p->prog_hull, p->prog_fs};
+    for (int i = 0; i < 3; i++)
+        if (progs[i])
+            gl->DeleteProgram(progs[i]);
+    p->prog_depth = p->prog_hull = p->prog_fs = 0;
+}
+
+/* Is the camera inside (or within the near plane of) some hull? Then hull rasterisation would miss pixels. */
+static int camera_inside_hull(const cu_gpu_scene *ctx, vec3 cam, double znear)
+{
+    const cu_cloud *cl = ctx->cloud;
+    double k = cu_hull_scale(ctx->scene->hull_tessellation);
+    for (int i = 0; i < cl->n; i++) {
+        vec3 rr = v3_scale(cl->r[i], k);
+        double rmin = fmin(rr.x, fmin(rr.y, rr.z));
+        vec3 q = v3_sub(cam, cl->c[i]);
+        double s = v3_len(v3(q.x / rr.x, q.y / rr.y, q.z / rr.z));
+        if (s <= 1.0 + 4.0 * znear / rmin)
+            return 1;
+    }
+    return 0;
+}
+
+void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx)
+{
+    const cu_gl *gl = ctx->gl;
+    const cu_camera *cam = &ctx->camera;
+    cu_shading_bind(ctx);
+    if (!(ctx->cloud->ke > 0)) /* zero density cannot change a pixel */
+        return;
+    gl->Enable(GL_BLEND);
+    gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied over the sky */
+    if (camera_inside_hull(ctx, cam->pos, cam->znear)) {
+        gl->Disable(GL_DEPTH_TEST);
+        cu_shading_uniforms(ctx, p->prog_fs, &p->fs, cam->pos, cam->vp, cam->inv_vp);
+        gl->BindVertexArray(ctx->empty_vao);
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        gl->Disable(GL_BLEND);
+        return;
+    }
+    /* Depth pre-pass: the nearest hull fragment per pixel, no colour. */
+    gl->Disable(GL_BLEND);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
+    gl->ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    gl->UseProgram(p->prog_depth);
+    gl->UniformMatrix4fv(p->depth_viewproj, 1, GL_FALSE, cam->vp);
+    gl->BindVertexArray(ctx->hull_vao);
+    gl->DrawElementsInstanced(GL_TRIANGLES, ctx->hull_indices, GL_UNSIGNED_SHORT, 0, ctx->cloud->n);
+    /* Cloud pass: only the fragment that won the depth test is shaded. Where two hulls' depths are equal to the
+     * depth buffer's precision, both would pass GL_EQUAL and blend the whole ray twice; the stencil lets the first
+     * of them through and no other (the shader integrates the whole ray, so any one will do). */
+    gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl->Enable(GL_BLEND);
+    gl->DepthFunc(GL_EQUAL);
+    gl->DepthMask(GL_FALSE);
+    gl->Enable(GL_STENCIL_TEST);
+    gl->StencilFunc(GL_EQUAL, 0, 0xff);
+    gl->StencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    cu_shading_uniforms(ctx, p->prog_hull, &p->hull, cam->pos, cam->vp, cam->inv_vp);
+    gl->DrawElementsInstanced(GL_TRIANGLES, ctx->hull_indices, GL_UNSIGNED_SHORT, 0, ctx->cloud->n);
+    gl->Disable(GL_STENCIL_TEST);
+    gl->DepthMask(GL_TRUE);
+    gl->DepthFunc(GL_LESS);
+    gl->Disable(GL_BLEND);
+}

@@ -1,0 +1,19 @@
+/* src/gpu/pass_cloud.h: the depth pre-pass and the cloud pass, which share the ellipsoid hulls: depth only first
+ * (Kol 3.4.2), then the hulls again with GL_EQUAL so each pixel is shaded once by cloud.frag; a full-screen
+ * triangle instead when the camera is inside a hull (Kol 3.4.4). */
+#ifndef CU_PASS_CLOUD_H
+#define CU_PASS_CLOUD_H
+#include "shading.h"
+
+typedef struct cu_pass_cloud {
+    GLuint prog_depth, prog_hull, prog_fs;
+    GLint depth_viewproj;
+    cu_shading_locs hull, fs;
+} cu_pass_cloud;
+
+int cu_pass_cloud_create(cu_pass_cloud *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
+                         cu_error *err);
+void cu_pass_cloud_destroy(cu_pass_cloud *p, const cu_gl *gl);
+/* Draws premultiplied over what the bound target holds (the sky); its depth and stencil must be cleared. */
+void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx);
+#endif

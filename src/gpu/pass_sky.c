@@ -1,0 +1,56 @@
+/* src/gpu/pass_sky.c: the sky pass (see pass_sky.h). */
+#include "pass_sky.h"
+#include <string.h>
+
+int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err)
+{
+    const cu_gl *gl = ctx->gl;
+    memset(p, 0, sizeof *p);
+    if (!(p->prog = cu_gl_program(gl, "fullscreen.vert", "sky.frag", defines, err)))
+        return 1;
+    cu_sun_locs_get(gl, p->prog, &p->sun);
+#define LOC(f) p->f = cu_gpu_loc(gl, p->prog, "u_" #f)
+    LOC(inv_viewproj); LOC(sun_irr); LOC(sun_disk_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
+    LOC(zenith); LOC(norm);
+#undef LOC
+    return 0;
+}
+
+void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
+{
+    if (p->prog)
+        gl->DeleteProgram(p->prog);
+    p->prog = 0;
+}
+
+void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx)
+{
+    const cu_gl *gl = ctx->gl;
+    const cu_sky *sky = ctx->sky;
+    const cu_scene *s = ctx->scene;
+    gl->Disable(GL_DEPTH_TEST);
+    gl->UseProgram(p->prog);
+    gl->UniformMatrix4fv(p->inv_viewproj, 1, GL_FALSE, ctx->camera.inv_rot);
+    cu_sun_uniforms(ctx, &p->sun);
+    gl->Uniform3f(p->sun_irr, (float)sky->sun_irradiance[0], (float)sky->sun_irradiance[1],
+                  (float)sky->sun_irradiance[2]);
+    /* the disk's radiance capped below what the target holds (fp16 overflows at 65504) */
+    GLenum f = ctx->hdr_format;
+    gl->Uniform1f(p->sun_disk_max, f == GL_RGBA32F ? 1e30f : f == GL_RGBA16F ? 60000.0f : 1e4f);
+    gl->Uniform3f(p->ground, (float)sky->ground[0], (float)sky->ground[1], (float)sky->ground[2]);
+    float os[3];
+    cu_out_scale(ctx, os);
+    gl->Uniform3f(p->out_scale, os[0], os[1], os[2]);
+    if (s->sky_model == CU_SKY_CONSTANT) {
+        gl->Uniform3f(p->sky_color, (float)s->sky_color[0], (float)s->sky_color[1], (float)s->sky_color[2]);
+    } else {
+        float pz[15];
+        for (int i = 0; i < 15; i++)
+            pz[i] = (float)sky->perez[i];
+        gl->Uniform1fv(p->perez, 15, pz);
+        gl->Uniform3f(p->zenith, (float)sky->zenith[0], (float)sky->zenith[1], (float)sky->zenith[2]);
+        gl->Uniform3f(p->norm, (float)sky->norm[0], (float)sky->norm[1], (float)sky->norm[2]);
+    }
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+}

@@ -1,0 +1,121 @@
+/* src/gpu/pass_sun.c: the sun pass (see pass_sun.h): an orthographic view from the sun covering the clouds' bounds
+ * (the plane at 2R along the sun direction, depths over 4R). */
+#include "pass_sun.h"
+#include "error.h"
+#include "sunmap.h"
+#include <string.h>
+
+int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
+                       cu_error *err)
+{
+    const cu_gl *gl = ctx->gl;
+    const cu_scene *s = ctx->scene;
+    memset(p, 0, sizeof *p);
+    p->method = ctx->shadow;
+    if (p->method != CU_SHADOW_FRONT) { /* peel, osm, fom: analytic full-screen passes over the map's tiles */
+        const char *fs = p->method == CU_SHADOW_OSM ? "sun_osm.frag"
+                         : p->method == CU_SHADOW_FOM ? "sun_fom.frag" : "sun_opacity.frag";
+        p->prog = cu_gl_program(gl, "fullscreen.vert", fs, fs_defs, err);
+    } else {
+        p->prog = cu_gl_program(gl, "hull.vert", "sun_depth.frag", hull_defs, err);
+    }
+    if (!p->prog)
+        return 1;
+    cu_density_locs_get(gl, p->prog, &p->density);
+    cu_sun_locs_get(gl, p->prog, &p->sun);
+    p->viewproj = cu_gpu_loc(gl, p->prog, "u_viewproj");
+
+    int size = ctx->sun_size;
+    cu_target_desc d = {.width = size, .height = size, .format = GL_RGBA32F, .colors = 1};
+    if (p->method == CU_SHADOW_PEEL) {
+        /* One tile per interval, side by side, two targets written in one pass. */
+        p->tiles = s->sun_intervals;
+        d.name = "sun opacity map";
+        d.colors = 2;
+    } else if (p->method == CU_SHADOW_OSM || p->method == CU_SHADOW_FOM) {
+        /* One target: tile 0 starts with the ray's depth range, then slices (osm) or coefficients (fom). */
+        p->tiles = p->method == CU_SHADOW_OSM ? 1 + s->osm_slices / 4 : 1 + s->fom_coefficients / 2;
+        d.name = p->method == CU_SHADOW_OSM ? "sun osm map" : "sun fom map";
+        GLint most = 0;
+        gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &most);
+        if (size * p->tiles > most)
+            return cu_fail(err, "sun map: %d tiles of %d texels exceed the largest texture (%d); lower "
+                                "quality.sun_map_size", p->tiles, size, (int)most);
+    } else {
+        p->tiles = 1;
+        d.name = "sun depth map";
+        d.format = GL_DEPTH_COMPONENT32F;
+    }
+    d.width = size * p->tiles;
+    if (cu_target_create(&p->map, gl, &d, err))
+        return 1;
+    p->out.map = p->map.tex[0];
+    p->out.tau = p->map.tex[1];
+    return 0;
+}
+
+void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl)
+{
+    if (p->prog)
+        gl->DeleteProgram(p->prog);
+    cu_target_delete(&p->map, gl);
+    memset(p, 0, sizeof *p);
+}
+
+/* The front map: hull fragments from the sun, each writing its ellipsoid's exact entry depth. */
+static void draw_front(cu_pass_sun *p, const cu_gpu_scene *ctx)
+{
+    const cu_gl *gl = ctx->gl;
+    double R = ctx->sun_R;
+    vec3 eye = v3_scale(ctx->sun_dir, 2.0 * R);
+    mat4 view = m4_look_dir(eye, v3_scale(ctx->sun_dir, -1.0), ctx->sun_up);
+    mat4 proj = m4_ortho(-R, R, -R, R, 0.0, 4.0 * R);
+    float vp[16];
+    m4_to_float(m4_mul(proj, view), vp);
+    gl->Viewport(0, 0, ctx->sun_size, ctx->sun_size);
+    gl->DepthMask(GL_TRUE);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->BindVertexArray(ctx->hull_vao);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, p->map.fbo);
+    gl->ClearDepthf(1.0f);
+    gl->Clear(GL_DEPTH_BUFFER_BIT);
+    gl->DepthFunc(GL_LESS);
+    gl->UseProgram(p->prog);
+    gl->UniformMatrix4fv(p->viewproj, 1, GL_FALSE, vp);
+    cu_density_uniforms(ctx, &p->density);
+    cu_sun_uniforms(ctx, &p->sun);
+    gl->DrawElementsInstanced(GL_TRIANGLES, ctx->hull_indices, GL_UNSIGNED_SHORT, 0, ctx->cloud->n);
+    gl->BindVertexArray(0);
+}
+
+void cu_pass_sun_update(cu_pass_sun *p, const cu_gpu_scene *ctx)
+{
+    const cu_gl *gl = ctx->gl;
+    gl->Disable(GL_CULL_FACE);
+    gl->Disable(GL_BLEND);
+    p->out.intervals = 0;
+    if (p->method == CU_SHADOW_FRONT) {
+        draw_front(p, ctx);
+        return;
+    }
+    int tiles = p->tiles; /* osm, fom: all tiles of their one target (no interval bookkeeping) */
+    if (p->method == CU_SHADOW_PEEL) {
+        /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
+        int J = cu_sun_max_intervals(ctx->cloud, ctx->sun_dir, 64), most = ctx->scene->sun_intervals;
+        tiles = p->out.intervals = J < 1 ? 1 : J > most ? most : J;
+        if (J > most)
+            cu_gpu_log(ctx, CU_LOG_INFO, "sun rays cross up to %d cloud intervals; the map keeps the first %d "
+                                         "(light.sun_intervals)", J, most);
+    }
+    gl->BindFramebuffer(GL_FRAMEBUFFER, p->map.fbo);
+    gl->Viewport(0, 0, ctx->sun_size * tiles, ctx->sun_size);
+    gl->Disable(GL_DEPTH_TEST);
+    gl->UseProgram(p->prog);
+    cu_density_uniforms(ctx, &p->density);
+    cu_sun_uniforms(ctx, &p->sun);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_NOISE);
+    gl->BindTexture(GL_TEXTURE_3D, ctx->noise_tex);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    gl->BindVertexArray(0);
+}

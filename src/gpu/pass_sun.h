@@ -1,0 +1,25 @@
+/* src/gpu/pass_sun.h: the sun pass: the map of the sun's transmittance through the clouds, by the scene's method
+ * (front depth, peeled opacity map, opacity shadow map, Fourier opacity map; DESIGN.md "Sun transmittance"). */
+#ifndef CU_PASS_SUN_H
+#define CU_PASS_SUN_H
+#include "gpu_scene.h"
+#include "target.h"
+
+typedef struct cu_pass_sun {
+    int method;           /* CU_SHADOW_*: ctx->shadow when created */
+    GLuint prog;          /* front: hulls (sun_depth.frag); else one full-screen pass over the map's tiles */
+    cu_density_locs density;
+    cu_sun_locs sun;
+    GLint viewproj;       /* front only */
+    cu_target map;        /* front: the depth map; osm, fom: tiles; peel: interval layers [0] and tau [1] */
+    int tiles;            /* osm: 1 + slices / 4; fom: 1 + N / 2 for N coefficients; peel: the most intervals */
+    cu_sun_maps out;      /* what the cloud pass reads (published into the frame context by the renderer) */
+} cu_pass_sun;
+
+/* Builds the program (hull_defs for the front map's hull program, fs_defs for the full-screen ones) and the map. */
+int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
+                       cu_error *err);
+void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl);
+/* Renders the map for ctx's sun direction and updates p->out. */
+void cu_pass_sun_update(cu_pass_sun *p, const cu_gpu_scene *ctx);
+#endif

@@ -1,0 +1,17 @@
+/* src/gpu/upload.h: the scene's data as the GL objects the passes read through the frame context: the noise
+ * volume, the phase table, the instanced ellipsoid hulls. */
+#ifndef CU_UPLOAD_H
+#define CU_UPLOAD_H
+#include "gpu_scene.h"
+#include "phase.h"
+
+/* The noise's own mip levels as a 3-D texture, into ctx->noise_tex. */
+void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n);
+/* The phase table (row 0: the chopped phase function, row 1: the removed peak), into ctx->phase_tex. */
+int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err);
+/* The hull mesh of ctx->scene's tessellation, one instance per ellipsoid of ctx->cloud, and an empty VAO for
+ * full-screen draws, into ctx's hull fields. */
+int cu_upload_hulls(cu_gpu_scene *ctx, cu_error *err);
+/* Deletes all of the above and zeroes their names. */
+void cu_upload_delete(cu_gpu_scene *ctx);
+#endif
