@@ -53,7 +53,7 @@ $(eval $(call test_program,test_drm,tests/platform/test_drm.c tests/platform/fak
 endif
 # gpio.c and one API's glue against a scripted fake of libgpiod, the same assertions for both: the v2 build finds the
 # v2 API in tests/platform/gpiod_v2/gpiod.h, so it runs everywhere; the v1 build needs the v1 header (libgpiod 1.x).
-GPIO_TEST_SRCS := tests/platform/test_gpio.c platform/input/gpio.c platform/input/quadrature.c platform/input/input.c
+GPIO_TEST_SRCS := tests/platform/test_gpio.c platform/input/gpio.c platform/input/gpio_errors.c platform/input/quadrature.c platform/input/input.c
 $(eval $(call test_program,test_gpio_v2,$(GPIO_TEST_SRCS) platform/input/gpio_v2.c,-Itests/platform/gpiod_v2,))
 ifeq ($(GPIO_API),1)
 $(eval $(call test_program,test_gpio_v1,$(GPIO_TEST_SRCS) platform/input/gpio_v1.c,$(GPIO_CFLAGS),))

@@ -1,6 +1,7 @@
-/* platform/gpio.c: the rotary encoder and button as a sun control, whichever libgpiod API the build uses: edges in
+/* platform/input/gpio.c: the rotary encoder and button as a sun control, whichever libgpiod API the build uses: edges in
  * timestamp order through the quadrature decoder, a level sample to resynchronise after lost edges, the one-line
  * errors, and the "gpio" input back end. The libgpiod calls are in gpio_v1.c or gpio_v2.c (see gpio_io.h). */
+#include "gpio.h"
 #include "gpio_io.h"
 #include "input_backend.h"
 #include <errno.h>
@@ -11,34 +12,6 @@
 #include <time.h>
 
 const char *cu_gpio_note(const cu_gpio *g) { return g->note; }
-
-uint64_t cu_gpio_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
-
-int cu_gpio_chip_error(const char *chip, int e, char *err, size_t errlen)
-{
-    if (e == EACCES || e == EPERM)
-        snprintf(err, errlen, "gpio: %s: permission denied: add the user to group 'gpio' (sudo usermod -aG gpio "
-                 "$USER, then log in again) or run as root", chip);
-    else if (e == ENOENT || e == ENODEV || e == ENXIO)
-        snprintf(err, errlen, "gpio: no GPIO chip '%s' on this machine: check chip= in --input (gpiodetect lists "
-                 "the chips)", chip);
-    else
-        snprintf(err, errlen, "gpio: cannot open GPIO chip '%s': %s", chip, strerror(e));
-    return 1;
-}
-
-int cu_gpio_busy_error(const cu_gpio *g, int i, const char *consumer, char *err, size_t errlen)
-{
-    snprintf(err, errlen, "gpio: line %s (offset %u) on %s is busy (used by '%s'): stop that program or remove the "
-             "dtoverlay claiming it, or pick other lines", g->line_name[i], g->offset[i], g->chip_name,
-             consumer && *consumer ? consumer : "the kernel");
-    return 1;
-}
 
 /* Feeds sorted-or-not edges of A/B/button (line index, level, time) and emits actions. */
 static void decode(cu_gpio *g, cu_quad_edge *edges, size_t n, cu_action *acts, int max, int *count)

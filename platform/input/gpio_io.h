@@ -1,10 +1,12 @@
-/* platform/gpio_io.h: what the knob logic in gpio.c (decoding, level resync, the input back end) asks of the
+/* platform/input/gpio_io.h: what the knob logic in gpio.c (decoding, level resync, the input back end) asks of the
  * libgpiod glue of one API version, gpio_v1.c or gpio_v2.c; platform.mk builds the one ./configure found.
- * Private to those three files. */
+ * Private to those files and gpio_errors.c; it names the struct without gpio.h so that it depends on nothing here. */
 #ifndef CU_PLATFORM_GPIO_IO_H
 #define CU_PLATFORM_GPIO_IO_H
-#include "gpio.h"
+#include "input.h"
 #include "quadrature.h"
+#include <stdint.h>
+
 
 #define CU_GPIO_CONSUMER "cumulo"
 #define CU_GPIO_MAX_EDGES 256   /* edges one cu_gpio_read decodes */
@@ -28,19 +30,19 @@ struct cu_gpio {
 /* Opens the chip, resolves the spec's lines into g->offset and g->line_name, requests them (consumer, both edges,
  * pull-up, retried without on old kernels, with a note) and starts whatever delivers their edges. On failure: one
  * line in err; cu_gpio_io_close then frees what was made. */
-int  cu_gpio_io_open(cu_gpio *g, const cu_input_spec *spec, char *err, size_t errlen);
+int  cu_gpio_io_open(struct cu_gpio *g, const cu_input_spec *spec, char *err, size_t errlen);
 /* The level of line CU_GPIO_A, _B or _BUTTON now (1 = high). */
-int  cu_gpio_io_level(cu_gpio *g, int line);
+int  cu_gpio_io_level(struct cu_gpio *g, int line);
 /* Up to CU_GPIO_MAX_EDGES pending edges, without blocking; non-zero with one line when the chip is gone. */
-int  cu_gpio_io_read(cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, size_t errlen);
-void cu_gpio_io_close(cu_gpio *g);
+int  cu_gpio_io_read(struct cu_gpio *g, cu_quad_edge *edges, size_t *n, char *err, size_t errlen);
+void cu_gpio_io_close(struct cu_gpio *g);
 
 /* "libgpiod v1" or "libgpiod v2", in gpio_v1.c or gpio_v2.c (an array, so that tables can point at it). */
 extern const char cu_gpio_api_name[];
 
-/* Shared by both versions, in gpio.c. */
+/* Shared by both versions, in gpio_errors.c. */
 uint64_t cu_gpio_now_ns(void);
 int cu_gpio_chip_error(const char *chip, int e, char *err, size_t errlen);
-int cu_gpio_busy_error(const cu_gpio *g, int line, const char *consumer, char *err, size_t errlen);
+int cu_gpio_busy_error(const struct cu_gpio *g, int line, const char *consumer, char *err, size_t errlen);
 
 #endif
