@@ -111,7 +111,8 @@ static int parse_views(sweep *sw, const char *scenes)
         else
             snprintf(v->path, sizeof v->path, "scenes/%s.scene", tok);
         const char *b = strrchr(v->path, '/');
-        snprintf(v->name, sizeof v->name, "%s", b ? b + 1 : v->path);
+        if (snprintf(v->name, sizeof v->name, "%s", b ? b + 1 : v->path) >= (int)sizeof v->name)
+            return bad("scene name '%.40s...' is longer than %zu characters", b ? b + 1 : v->path, sizeof v->name - 1);
         char *dot = strstr(v->name, ".scene");
         if (dot)
             *dot = 0;
