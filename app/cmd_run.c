@@ -32,13 +32,8 @@ typedef struct run_args {
     cu_sun_ctl sun;                 /* the knob settings; the sun itself comes from the scene */
 } run_args;
 
-typedef struct run_session {
-    const cu_display_backend *be;
-    cu_display *disp;
-    cu_scene *scene;
-    cu_renderer *r;
-    int verbose;                    /* the log callback's user data */
-} run_session;
+/* The display, its renderer and the scene, opened as every subcommand opens them (app/session.c). */
+typedef cli_session run_session;
 
 static void list_display_backends(FILE *f)
 {
@@ -58,7 +53,19 @@ static void usage(FILE *f)
         "  --input evdev:/dev/input/event3 | evdev:name=NAME   keyboard (arrows, +/-) or dial (USB knob, encoder)\n"
         "  --input stdin       commands: sun EL AZ | elevation EL | azimuth AZ | turn N | toggle | status | quit\n"
         "  stdin is read by default unless --no-stdin. Each sun change is logged on stderr as\n"
-        "  'sun elevation=E azimuth=A source=S'.\n");
+        "  'sun elevation=E azimuth=A source=S'.\n"
+        "  --platform NAME     display back end (default headless): drm full screen on DRM/KMS, x11 or wayland window\n"
+        "  --frames N          stop after N frames (default: run until quit, SIGINT or SIGTERM)\n"
+        "  --fullscreen        windowed back ends: cover the screen\n"
+        "  --mode WxH[@Hz]     drm: the display mode (default: the connector's preferred one)\n"
+        "  --device PATH       drm: /dev/dri/cardN or a /dev/dri/by-path name (default: probe)\n"
+        "  --no-stdin          do not read commands from standard input (kiosks, systemd)\n"
+        "  --knob AXIS         what the knob turns first: azimuth (default) or elevation; the button toggles\n"
+        "  --step DEG          degrees per detent, 0.001..90 (default 1; elevation moves half of it)\n"
+        "  --accel K           acceleration of fast turns, 0..100 (default 0.25; 0: none)\n"
+        "  --sun-elevation-range MIN:MAX, --sun-azimuth-range MIN:MAX   limits of the knob (degrees)\n"
+        "  --size WxH, --set SECTION.KEY=V, --data-dir DIR, -v   as for cumulo render (cumulo render --help)\n"
+        "  -h, --help, --version\n");
     fprintf(f, "display back ends in this build:");
     list_display_backends(f);
     fprintf(f, "inputs in this build:");
@@ -73,19 +80,6 @@ static uint64_t now_ns(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-}
-
-static void log_cb(void *user, cu_log_level level, const char *msg)
-{
-    static const char *names[] = {"error", "warning", "info", "debug"};
-    if (level <= CU_LOG_WARN || *(const int *)user)
-        fprintf(stderr, "cumulo: %s: %s\n", names[level], msg);
-}
-
-static void *getproc(void *user, const char *name)
-{
-    run_session *s = user;
-    return s->be->get_proc_address(s->disp, name);
 }
 
 static void input_log(void *user, const char *msg) { (void)user; fprintf(stderr, "%s\n", msg); }
@@ -106,7 +100,7 @@ static int parse_number(const char *opt, const char *v, double lo, double hi, in
 }
 
 enum { OPT_COMMON = 256, OPT_FULLSCREEN, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
-       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE };
+       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION };
 
 #define ARG(name, id) { name, required_argument, NULL, id }
 #define FLAG(name, id) { name, no_argument, NULL, id }
@@ -115,7 +109,8 @@ static const struct option long_opts[] = {
     ARG("size", OPT_COMMON), ARG("backend", OPT_COMMON), ARG("platform", OPT_COMMON), ARG("set", OPT_COMMON),
     ARG("frames", OPT_FRAMES), ARG("mode", OPT_MODE), ARG("device", OPT_DEVICE), ARG("input", OPT_INPUT),
     ARG("knob", OPT_KNOB), ARG("step", OPT_STEP), ARG("accel", OPT_ACCEL), ARG("sun-elevation-range", OPT_EL_RANGE),
-    ARG("sun-azimuth-range", OPT_AZ_RANGE), { NULL, 0, NULL, 0 },
+    ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("data-dir", OPT_COMMON), FLAG("version", OPT_VERSION),
+    { NULL, 0, NULL, 0 },
 };
 
 /* One option and its value; 0, or 1 after printing why the value is wrong. */
@@ -178,6 +173,9 @@ static int parse_args(run_args *a, int argc, char **argv)
         if (c == 'h') {
             usage(stdout);
             return 0;
+        } else if (c == OPT_VERSION) {
+            cli_print_version(stdout, "cumulo");
+            return 0;
         } else if (c == '?' || c == -1) { /* -1 before the end: "--", never the end of the options here */
             fprintf(stderr, "cumulo run: unknown option '%s'\n", argv[at]);
             usage(stderr);
@@ -217,7 +215,7 @@ static int parse_args(run_args *a, int argc, char **argv)
     return -1;
 }
 
-/* Scene, display, renderer; 0, or 1 after printing why not. */
+/* Scene, display, renderer; 0, or the exit status after printing why not (2: a bad --set). */
 static int open_session(run_session *s, run_args *a)
 {
     cu_error e;
@@ -228,22 +226,19 @@ static int open_session(run_session *s, run_args *a)
     for (int i = 0; i < a->o.nsets; i++)
         if (cu_scene_set(s->scene, a->o.sets[i], &e)) {
             fprintf(stderr, "%s\n", e.msg);
-            return 1;
+            return 2;
         }
     cu_scene_output_size(s->scene, &a->dopt.width, &a->dopt.height);
     if (a->o.width) {
         a->dopt.width = a->o.width;
         a->dopt.height = a->o.height;
     }
-    char err[512];
-    if (s->be->open(&s->disp, &a->dopt, err, sizeof err)) {
+    char err[600];
+    if (cli_session_attach(s, s->be, &a->dopt, cli_data_dir(&a->o), a->o.verbose, err, sizeof err)) {
         fprintf(stderr, "cumulo: %s\n", err);
-        s->disp = NULL;
         return 1;
     }
-    s->verbose = a->o.verbose;
-    cu_desc desc = { .get_proc_address = getproc, .get_proc_user = s, .log = log_cb, .log_user = &s->verbose };
-    if (cu_renderer_create(&s->r, &desc, &e) || cu_renderer_set_scene(s->r, s->scene, &e)) {
+    if (cu_renderer_set_scene(s->r, s->scene, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;
     }
@@ -374,8 +369,9 @@ int cmd_run(int argc, char **argv)
     sigaction(SIGTERM, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
 
-    rc = 1;
-    if (open_session(&s, &a) == 0) {
+    rc = open_session(&s, &a);
+    if (rc == 0) {
+        rc = 1;
         /* Inputs after the display: on a kiosk the screen matters more, and evdev grabs only on a bare console. */
         cu_input_opts io = { .grab = !strcmp(s.be->name, "drm"), .log = input_log };
         if (cu_input_set_open(&a.inputs, &io) == 0 && a.inputs.nrequired) {
@@ -389,9 +385,6 @@ int cmd_run(int argc, char **argv)
         }
     }
     cu_input_set_close(&a.inputs);
-    cu_renderer_destroy(s.r);
-    if (s.disp)
-        s.be->close(s.disp); /* DRM: puts the previous CRTC (the console) back */
-    cu_scene_free(s.scene);
+    cli_session_close(&s); /* DRM: puts the previous CRTC (the console) back */
     return rc;
 }

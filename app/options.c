@@ -105,13 +105,13 @@ int cli_session_open(cli_session *s, const cli_opts *o)
             n += snprintf(msg + n, sizeof msg - (size_t)n, " %s", cu_display_backends[i]->name);
         return fail_open(s, 2, msg);
     }
-    cu_scene *scene = s->scene;
+    cu_display_opts dopt = {0};
+    dopt.width = s->width;
+    dopt.height = s->height;
+    dopt.float_target = o->linear;
     char err[600];
-    if (cli_session_attach(s, be, s->width, s->height, o->linear, cli_data_dir(o), o->verbose, err, sizeof err)) {
-        s->scene = scene;
+    if (cli_session_attach(s, be, &dopt, cli_data_dir(o), o->verbose, err, sizeof err))
         return fail_open(s, 1, err);
-    }
-    s->scene = scene;
     if (cu_renderer_set_scene(s->r, s->scene, &e))
         return fail_open(s, 1, e.msg);
     return 0;

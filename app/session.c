@@ -49,18 +49,16 @@ const char *cli_data_dir(const cli_opts *o)
     return NULL;
 }
 
-int cli_session_attach(cli_session *s, const cu_display_backend *be, int width, int height, int linear,
+int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_display_opts *dopt,
                        const char *data_dir, int verbose, char *err, size_t errlen)
 {
+    cu_scene *scene = s->scene;
     memset(s, 0, sizeof *s);
+    s->scene = scene;
     s->be = be;
-    s->linear = linear;
+    s->linear = dopt->float_target;
     s->verbose = verbose;
-    cu_display_opts dopt = {0};
-    dopt.width = width;
-    dopt.height = height;
-    dopt.float_target = linear;
-    if (be->open(&s->disp, &dopt, err, errlen)) {
+    if (be->open(&s->disp, dopt, err, errlen)) {
         s->disp = NULL;
         return 1;
     }

@@ -60,10 +60,10 @@ void cli_print_version(FILE *f, const char *program);
  * tables (a build tree), else NULL (the library's installed default). */
 const char *cli_data_dir(const cli_opts *o);
 
-/* Opens back end `be` with a width x height target (float when linear; 0 = the back end's size) and a renderer on
- * its context reading the tables from data_dir (NULL = the library's default). No scene yet; prints nothing: returns 1
- * with a message in err. The subcommands, the sweep and the tests all open a display through this. */
-int cli_session_attach(cli_session *s, const cu_display_backend *be, int width, int height, int linear,
+/* Opens back end `be` with `dopt` (size, float target, drm mode and device, ...) and a renderer on its context
+ * reading the tables from data_dir (NULL = the library's default). Keeps s->scene; prints nothing: returns 1 with a
+ * message in err. Every subcommand, the sweep and the image tests open a display through this. */
+int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_display_opts *dopt,
                        const char *data_dir, int verbose, char *err, size_t errlen);
 /* Loads o->scene_path with its --set overrides, finds the back end and attaches; prints one line and returns 2 for a usage error (unknown back end, bad --set), 1 for a runtime
  * failure, 0 on success. cli_session_close is safe after a failed open. */

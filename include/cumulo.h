@@ -63,7 +63,7 @@ int  cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_de
 void cu_renderer_get_sun(const cu_renderer *r, double *elevation_deg, double *azimuth_deg);
 /* The energy closure's gain on the multiple scattering the slab model reflects (transmitted = 0) or transmits (1)
  * for the current sun: 1 when the cloud sends out no more than it intercepts, or when the mode is not the slab
- * model (src/energy.c). Updated by cu_render when the sun or the clouds change. */
+ * model (src/gpu/pass_energy.c). Updated by cu_render when the sun or the clouds change. */
 double cu_renderer_ms_gain(const cu_renderer *r, int transmitted);
 
 typedef struct cu_frame {

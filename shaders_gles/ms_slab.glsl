@@ -1,7 +1,7 @@
 // shaders_gles/ms_slab.glsl: multiple scattering from Bouthors' slab model (Kol 3.1.4, 3.4.5, eqs. 3.32, 3.55-3.58,
 // 3.70). A plane-parallel slab is fitted to the cloud around a point from the mipmapped slab maps (slab_map.frag),
 // and the fitted per-group functions of eq. 3.32 (data/slab_fit_bouthors.txt, made by tools/slab) give the radiance
-// of scattering orders 2..16+. The CPU twin is src/slabmodel.c (cu_slab_model_eval): same interpolation, clamps and
+// of scattering orders 2..16+. The CPU twin is src/core/slabmodel.c (cu_slab_model_eval): same interpolation, clamps and
 // extrapolation, so tests can compare the two. Needs density.glsl (PI), SLAB_NT/NV/NL/NP.
 uniform sampler2D u_slab_tab;   // RGBA32F, one row per (group 2..16+, thickness): (A1,B1,C,D)@thV, (A2,B2)@thL, P@Theta
 uniform float u_slab_t[SLAB_NT];

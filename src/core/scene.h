@@ -72,7 +72,7 @@ struct cu_scene {
     int ms_iterations;        /* collector search: most steps (Bouthors: most converge within 10) */
     double ms_blur_m;         /* slab model: width of the box the slab maps are averaged over (Kol: a fixed LOD) */
     int ms_closure;           /* slab model: scale multiple scattering so a cloud sends out no more than it
-                                 intercepts (src/energy.c), 0/1 */
+                                 intercepts (src/gpu/pass_energy.c), 0/1 */
 };
 
 void cu_scene_defaults(cu_scene *s);

@@ -25,6 +25,8 @@ if [ "$md" -gt 40 ] && [ "$md" = "$mn" ]; then t_ok "markdown and man list the s
 else t_fail "markdown and man list the same keys" "markdown $md, man $mn"; fi
 
 t_expect "cumulo-keys without an option" 2 "usage: cumulo-keys" -- "$K"
+case "$("$K" --help)" in *--markdown*--man*--version*) t_ok "cumulo-keys --help" ;; *) t_fail "cumulo-keys --help" "" ;; esac
+case "$("$K" --version)" in "cumulo-keys "*) t_ok "cumulo-keys --version" ;; *) t_fail "cumulo-keys --version" "" ;; esac
 
 if command -v groff >/dev/null 2>&1; then
   groff -ww -man -Tutf8 -z docs/man/cumulo.scene.5 >"$T/groff" 2>&1

@@ -15,7 +15,11 @@ int tr_open(tr_ctx *c, const cu_display_backend *be, int w, int h, int linear)
     c->h = h;
     c->linear = linear;
     /* The same opening as every cumulo subcommand (app/session.c); tables as the program finds them. */
-    if (cli_session_attach(&c->s, be, w, h, linear, getenv("CUMULO_DATA_DIR"), 0, c->err, sizeof c->err))
+    cu_display_opts o = {0};
+    o.width = w;
+    o.height = h;
+    o.float_target = linear;
+    if (cli_session_attach(&c->s, be, &o, getenv("CUMULO_DATA_DIR"), 0, c->err, sizeof c->err))
         return 1;
     c->be = c->s.be;
     c->disp = c->s.disp;

@@ -222,7 +222,7 @@ static const char *const SPHERE =
     "[ellipsoid]\ncenter = 0 0 0\nradii = 500 500 500\n";
 
 /* The sunlight a scene's clouds intercept, on the CPU with the engine's density twin (independent of the renderer's
- * energy closure, src/energy.c): the integral over the sun's cross-section of 1 - e^-(1-f) tau, what the chopped
+ * energy closure, src/gpu/pass_energy.c): the integral over the sun's cross-section of 1 - e^-(1-f) tau, what the chopped
  * medium scatters (delta-M), and of 1 - e^-tau, all of it, in m^2 per unit irradiance. Also the cloud's centre and
  * bounding radius and the sun direction. */
 typedef struct budget {
@@ -378,7 +378,7 @@ static void test_cumulus_power_within_intercepted(void **st)
 }
 
 /* Small sun steps give small image changes: no popping when the sun maps and slab maps are redone, nor when the
- * energy closure's gains are measured again (src/energy.c: once the sun has moved 1 deg, here between 41.00 and
+ * energy closure's gains are measured again (src/gpu/pass_energy.c: once the sun has moved 1 deg, here between 41.00 and
  * 41.05). The step 0.05 deg moves the sun's shadow by 1 m at 1 km; the change per step is compared with the image's
  * range. */
 static void test_sun_steps_are_continuous(void **st)

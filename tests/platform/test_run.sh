@@ -49,6 +49,13 @@ if $C run --help | grep -q 'back ends in this build:.* drm'; then
 else
   t_skip bad_mode "this cumulo was built without DRM"
 fi
+t_expect bad_set 2 "unknown key 'cloud.colour'" -- $C run $S --platform headless --no-stdin --frames 1 --set cloud.colour=1
+out=$($C run --version 2>&1); case "$out" in "cumulo "*"inputs: stdin evdev"*) t_ok run_version ;; *) t_fail run_version "$out" ;; esac
+for opt in --platform --frames --fullscreen --mode --device --input --no-stdin --knob --step --accel --sun-elevation-range \
+           --sun-azimuth-range --size --set --data-dir; do
+  case "$($C run --help)" in *"$opt"*) ;; *) t_fail "run --help describes $opt" "missing"; continue ;; esac
+done
+t_ok "run --help describes every option"
 t_expect bad_frames 2 "--frames expects a whole number" -- $C run $S --platform headless --frames 0
 
 # DRM on a machine without /dev/dri: non-zero and a message that says what to do.

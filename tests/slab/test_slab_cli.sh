@@ -98,7 +98,7 @@ k=$(awk '!/^#/ { $NF = ""; print }' data/slab_fit_logsep.txt | sha256sum | cut -
 if awk '!/^#/ && $NF !~ /^-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$/ { bad = 1 } END { exit bad }' \
      data/slab_fit_bouthors.txt data/slab_fit_logsep.txt; then t_ok fit_tables_finite
 else t_fail fit_tables_finite "non-numeric or non-finite value in data/slab_fit_*.txt"; fi
-# the renderer (src/slabmodel.c) takes logarithms of P, A1, A2, C, D: they must be positive (B1, B2 may be any sign)
+# the renderer (src/core/slabmodel.c) takes logarithms of P, A1, A2, C, D: they must be positive (B1, B2 may be any sign)
 if awk '!/^#/ && $1 != "B1" && $1 != "B2" && !($5 > 0) { bad = 1 } END { exit bad }' data/slab_fit_bouthors.txt
 then t_ok bouthors_positive; else t_fail bouthors_positive "non-positive P/A1/A2/C/D in data/slab_fit_bouthors.txt"; fi
 

@@ -2,6 +2,7 @@
  * (--markdown) or as the key rows of docs/man/cumulo.scene.5 (--man); `make keys-docs` puts both in place and
  * tests/core/test_keys.sh fails when either differs. */
 #include "scene_keys.h"
+#include "version.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -104,6 +105,14 @@ int main(int argc, char **argv)
         markdown();
     else if (argc == 2 && strcmp(argv[1], "--man") == 0)
         man();
+    else if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0))
+        printf("usage: cumulo-keys --markdown | --man\n"
+               "Prints the scene key table (src/core/scene_keys.c) for README.md or docs/man/cumulo.scene.5.\n"
+               "  --markdown   the README's Markdown table\n"
+               "  --man        the key rows of cumulo.scene(5), in man(7) markup\n"
+               "  --version    the version\n");
+    else if (argc == 2 && strcmp(argv[1], "--version") == 0)
+        printf("cumulo-keys %s (%s)\n", CU_VERSION, CU_GIT_DESCRIBE);
     else {
         fprintf(stderr, "usage: cumulo-keys --markdown | --man\n"
                         "prints the scene key table for README.md or docs/man/cumulo.scene.5\n");

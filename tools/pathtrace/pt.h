@@ -11,7 +11,7 @@
 #include "vecmath.h"
 #include <stdint.h>
 
-/* The renderer's noise seed (NOISE_SEED in src/renderer.c, private there); test_pt_cli.sh checks they agree. */
+/* The renderer's noise seed (NOISE_SEED in src/gpu/renderer.c, private there); test_pt_cli.sh checks they agree. */
 #define PT_NOISE_SEED 20130612u
 /* Probability per vertex of the forward-peak sun strategy (README "Variance: the forward peak"). */
 #define PT_GUIDE_DEFAULT 1.0
