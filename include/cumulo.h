@@ -1,4 +1,5 @@
-/* cumulo.h: the public C API of libcumulo, a real-time cumulus renderer for OpenGL ES 3.0 (Kol 2013, Bouthors 2008).
+/* include/cumulo.h: the public C API of libcumulo, a real-time cumulus renderer for OpenGL ES 3.0 (Kol 2013,
+ * Bouthors 2008).
  *
  * Usage (sokol-style: zero means default, the library never creates a context or prints):
  *     cu_desc desc = {0};                       // GL functions through dlsym, no logging

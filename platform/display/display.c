@@ -1,4 +1,4 @@
-/* platform/display.c: the table of display back ends compiled into this binary, and lookup by name. */
+/* platform/display/display.c: the table of display back ends compiled into this binary, and lookup by name. */
 #include "display.h"
 #include "config.h"
 #include <string.h>

@@ -1,4 +1,4 @@
-/* platform/display.h: the boundary between cumulo's programs and a windowing system: a back end makes a
+/* platform/display/display.h: the boundary between cumulo's programs and a windowing system: a back end makes a
  * GLES 3 context current, hands out the framebuffer to draw into, and presents frames (kmscube/raylib style). */
 #ifndef CU_PLATFORM_DISPLAY_H
 #define CU_PLATFORM_DISPLAY_H

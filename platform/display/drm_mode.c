@@ -1,4 +1,4 @@
-/* platform/drm_mode.c: --mode parsing and mode choice for DRM/KMS. */
+/* platform/display/drm_mode.c: --mode parsing and mode choice for DRM/KMS. */
 #include "drm_mode.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
-/* platform/drm_mode.h: choosing a display mode for the DRM back end (`--mode WxH[@Hz]` or the preferred one); pure,
- * so it is tested without a display. */
+/* platform/display/drm_mode.h: choosing a display mode for the DRM back end (`--mode WxH[@Hz]` or the preferred
+ * one); pure, so it is tested without a display. */
 #ifndef CU_PLATFORM_DRM_MODE_H
 #define CU_PLATFORM_DRM_MODE_H
 #include <stddef.h>

@@ -1,4 +1,5 @@
-/* platform/egl_common.c: EGL display/config/context/surface set-up shared by the DRM, X11 and Wayland back ends. */
+/* platform/display/egl_common.c: EGL display/config/context/surface set-up shared by the DRM, X11 and Wayland back
+ * ends. */
 #include "egl_common.h"
 #include <GLES3/gl3.h>
 #include <dlfcn.h>

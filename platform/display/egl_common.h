@@ -1,5 +1,5 @@
-/* platform/egl_common.h: the EGL steps the window back ends share (DRM/GBM, X11, Wayland): a platform display, a
- * GLES 3 config and context asked for explicitly, a window surface, the glmark2-style description. */
+/* platform/display/egl_common.h: the EGL steps the window back ends share (DRM/GBM, X11, Wayland): a platform
+ * display, a GLES 3 config and context asked for explicitly, a window surface, the glmark2-style description. */
 #ifndef CU_PLATFORM_EGL_COMMON_H
 #define CU_PLATFORM_EGL_COMMON_H
 #include <EGL/egl.h>

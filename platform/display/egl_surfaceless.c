@@ -1,4 +1,4 @@
-/* platform/egl_surfaceless.c: headless back end on EGL_MESA_platform_surfaceless: a real GLES 3 context with no
+/* platform/display/egl_surfaceless.c: headless back end on EGL_MESA_platform_surfaceless: a real GLES 3 context with no
  * window system, rendering into an offscreen framebuffer (the default for tests, screenshots and benchmarks). */
 #include "display.h"
 #include "egl_common.h"

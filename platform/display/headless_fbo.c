@@ -1,4 +1,4 @@
-/* platform/headless_fbo.c: offscreen colour target for the headless back ends (see headless_fbo.h). */
+/* platform/display/headless_fbo.c: offscreen colour target for the headless back ends (see headless_fbo.h). */
 #include "headless_fbo.h"
 #include <GLES3/gl3.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* platform/headless_fbo.h: the offscreen framebuffer both headless back ends render into (RGBA8 or RGBA32F). */
+/* platform/display/headless_fbo.h: the offscreen framebuffer both headless back ends render into (RGBA8 or RGBA32F). */
 #ifndef CU_HEADLESS_FBO_H
 #define CU_HEADLESS_FBO_H
 #include <stddef.h>

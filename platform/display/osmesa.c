@@ -1,4 +1,4 @@
-/* platform/osmesa.c: headless back end on Mesa's OSMesa: a desktop GL 4.5 core context that compiles the same
+/* platform/display/osmesa.c: headless back end on Mesa's OSMesa: a desktop GL 4.5 core context that compiles the same
  * `#version 300 es` shaders (GL_ARB_ES3_compatibility). Kept because it is a second, independent driver path for the
  * image tests; it is gone from Mesa >= 25.1, so EGL surfaceless is the default. */
 #include "display.h"

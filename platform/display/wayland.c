@@ -1,4 +1,4 @@
-/* platform/wayland.c: a desktop window on Wayland (xdg-shell) through EGL (GLES 3), windowed or full screen. */
+/* platform/display/wayland.c: a desktop window on Wayland (xdg-shell) through EGL (GLES 3), windowed or full screen. */
 #include "display.h"
 #include "egl_common.h"
 #include <stdint.h>

@@ -1,4 +1,4 @@
-/* platform/x11.c: a desktop window on X11 through EGL (GLES 3), windowed or full screen (EWMH), vsync on. */
+/* platform/display/x11.c: a desktop window on X11 through EGL (GLES 3), windowed or full screen (EWMH), vsync on. */
 #include "display.h"
 #include "egl_common.h"
 #include <X11/Xatom.h>

@@ -1,5 +1,5 @@
-/* platform/evdev.c: decoding of Linux input events into sun actions, opening/reading /dev/input/event* devices, and
- * the "evdev" input back end built on them. */
+/* platform/input/evdev.c: decoding of Linux input events into sun actions, opening/reading /dev/input/event*
+ * devices, and the "evdev" input back end built on them. */
 #include "evdev.h"
 #include "input_backend.h"
 #include <dirent.h>

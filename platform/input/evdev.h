@@ -1,4 +1,4 @@
-/* platform/evdev.h: Linux input devices (/dev/input/event*) as sun controls: keyboards (arrows, +/-), relative
+/* platform/input/evdev.h: Linux input devices (/dev/input/event*) as sun controls: keyboards (arrows, +/-), relative
  * dials (USB knobs, mouse wheels, the Raspberry Pi rotary-encoder overlay). Decoding is pure; opening is thin. */
 #ifndef CU_PLATFORM_EVDEV_H
 #define CU_PLATFORM_EVDEV_H

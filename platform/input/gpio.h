@@ -1,4 +1,4 @@
-/* platform/gpio.h: a rotary encoder (lines A, B) and optional push button on GPIO through libgpiod (v1 or v2 API,
+/* platform/input/gpio.h: a rotary encoder (lines A, B) and optional push button on GPIO through libgpiod (v1 or v2 API,
  * gpio_v1.c or gpio_v2.c, chosen at build time), turned into sun actions by the quadrature decoder. */
 #ifndef CU_PLATFORM_GPIO_H
 #define CU_PLATFORM_GPIO_H

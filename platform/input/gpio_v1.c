@@ -1,5 +1,5 @@
-/* platform/gpio_v1.c: the knob's libgpiod glue for the v1 API (libgpiod 1.4 .. 1.6, Debian 12): lines requested in
- * bulk, one kernel event queue per line, and a reader thread that drains those queues as edges come. */
+/* platform/input/gpio_v1.c: the knob's libgpiod glue for the v1 API (libgpiod 1.4 .. 1.6, Debian 12): lines
+ * requested in bulk, one kernel event queue per line, and a reader thread that drains those queues as edges come. */
 #include "gpio.h"
 #include "gpio_io.h"
 #include <errno.h>

@@ -1,4 +1,4 @@
-/* platform/gpio_v2.c: the knob's libgpiod glue for the v2 API (libgpiod 2.x): one line request for A, B and the
+/* platform/input/gpio_v2.c: the knob's libgpiod glue for the v2 API (libgpiod 2.x): one line request for A, B and the
  * button, kernel debounce, and a kernel event queue deep enough that no reader thread is needed. */
 #include "gpio.h"
 #include "gpio_io.h"

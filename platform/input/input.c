@@ -1,4 +1,4 @@
-/* platform/input.c: parsing of `--input` specifications (gpio:, evdev:, stdin) into cu_input_spec; pure. */
+/* platform/input/input.c: parsing of `--input` specifications (gpio:, evdev:, stdin) into cu_input_spec; pure. */
 #include "input.h"
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,5 @@
-/* platform/input.h: what the inputs of `cumulo run` say (actions) and the `--input` option's grammar; pure, no I/O. */
+/* platform/input/input.h: what the inputs of `cumulo run` say (actions) and the `--input` option's grammar; pure, no
+ * I/O. */
 #ifndef CU_PLATFORM_INPUT_H
 #define CU_PLATFORM_INPUT_H
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* platform/input_backend.c: the table of inputs compiled into this binary, and lookup by --input kind. */
+/* platform/input/input_backend.c: the table of inputs compiled into this binary, and lookup by --input kind. */
 #include "input_backend.h"
 #include "config.h"
 

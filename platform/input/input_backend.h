@@ -1,4 +1,4 @@
-/* platform/input_backend.h: the boundary between `cumulo run` and its inputs, drawn like display.h: each kind of
+/* platform/input/input_backend.h: the boundary between `cumulo run` and its inputs, drawn like display.h: each kind of
  * --input (stdin, evdev, gpio) is a table of functions in its own file, and input_backend.c lists those built. */
 #ifndef CU_PLATFORM_INPUT_BACKEND_H
 #define CU_PLATFORM_INPUT_BACKEND_H

@@ -1,4 +1,4 @@
-/* platform/input_set.c: the inputs of one run together (see input_set.h). */
+/* platform/input/input_set.c: the inputs of one run together (see input_set.h). */
 #include "input_set.h"
 #include <poll.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* platform/input_set.h: the inputs of one run together: each --input opened through its back end, all polled at
+/* platform/input/input_set.h: the inputs of one run together: each --input opened through its back end, all polled at
  * once and each one with something pending read, and what is left of them when some go away. */
 #ifndef CU_PLATFORM_INPUT_SET_H
 #define CU_PLATFORM_INPUT_SET_H

@@ -1,4 +1,4 @@
-/* platform/quadrature.c: quadrature decoding of a mechanical rotary encoder and push-button debouncing, as pure
+/* platform/input/quadrature.c: quadrature decoding of a mechanical rotary encoder and push-button debouncing, as pure
  * state machines over timestamped levels (the GPIO and test code feed them; nothing here does I/O). */
 #include "quadrature.h"
 

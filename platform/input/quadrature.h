@@ -1,4 +1,4 @@
-/* platform/quadrature.h: pure decoders for mechanical contacts: a rotary-encoder quadrature decoder that counts
+/* platform/input/quadrature.h: pure decoders for mechanical contacts: a rotary-encoder quadrature decoder that counts
  * detents and a push-button debouncer. No I/O: fed level samples or edges with timestamps, so traces test them. */
 #ifndef CU_PLATFORM_QUADRATURE_H
 #define CU_PLATFORM_QUADRATURE_H

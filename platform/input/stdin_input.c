@@ -1,5 +1,5 @@
-/* platform/stdin_input.c: the stdin command language of `cumulo run` (sun, turn, toggle, quit...), its line reader,
- * and the "stdin" input back end built on them. */
+/* platform/input/stdin_input.c: the stdin command language of `cumulo run` (sun, turn, toggle, quit...), its line
+ * reader, and the "stdin" input back end built on them. */
 #include "stdin_input.h"
 #include "input_backend.h"
 #include <errno.h>

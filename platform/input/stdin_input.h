@@ -1,4 +1,4 @@
-/* platform/stdin_input.h: line commands on standard input (for SSH sessions and scripts): parsing is pure, the
+/* platform/input/stdin_input.h: line commands on standard input (for SSH sessions and scripts): parsing is pure, the
  * reader is a non-blocking line splitter over a file descriptor. */
 #ifndef CU_PLATFORM_STDIN_INPUT_H
 #define CU_PLATFORM_STDIN_INPUT_H

@@ -1,4 +1,4 @@
-/* platform/sun_control.c: knob/keyboard/command actions -> sun elevation and azimuth (axis toggle, acceleration,
+/* platform/input/sun_control.c: knob/keyboard/command actions -> sun elevation and azimuth (axis toggle, acceleration,
  * limits). */
 #include "sun_control.h"
 #include <math.h>

@@ -1,4 +1,4 @@
-/* platform/sun_control.h: maps input actions to the sun's elevation and azimuth: which axis the knob drives,
+/* platform/input/sun_control.h: maps input actions to the sun's elevation and azimuth: which axis the knob drives,
  * the acceleration curve for fast turns, and the limits. Pure: no I/O, no renderer. */
 #ifndef CU_PLATFORM_SUN_CONTROL_H
 #define CU_PLATFORM_SUN_CONTROL_H

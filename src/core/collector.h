@@ -1,4 +1,4 @@
-/* src/collector.h: the collector table of ms.mode = collector (Bouthors' iterative collector search, Kol eqs.
+/* src/core/collector.h: the collector table of ms.mode = collector (Bouthors' iterative collector search, Kol eqs.
  * 3.59-3.63): where on a slab's lit face the light that reaches a viewpoint entered, and how wide that area is,
  * tabulated from the slab simulations by scripts/collector_table.sh (data/slab_collector.txt). */
 #ifndef CU_COLLECTOR_H

@@ -1,4 +1,4 @@
-/* src/density.c: extinction field of a cloud of noisy ellipsoids (see density.h). */
+/* src/core/density.c: extinction field of a cloud of noisy ellipsoids (see density.h). */
 #include "density.h"
 #include <string.h>
 

@@ -1,4 +1,4 @@
-/* src/density.h: the cloud's extinction field (Kol eqs. 3.1-3.3 with the radial distance to the ellipsoid union),
+/* src/core/density.h: the cloud's extinction field (Kol eqs. 3.1-3.3 with the radial distance to the ellipsoid union),
  * built once from a scene; the CPU twin of the shader's density, shared with tests and the path tracer. */
 #ifndef CU_DENSITY_H
 #define CU_DENSITY_H

@@ -1,4 +1,4 @@
-/* src/ellipsoid.c: ellipsoid intersection, distance, overlap and hull mesh (see ellipsoid.h). */
+/* src/core/ellipsoid.c: ellipsoid intersection, distance, overlap and hull mesh (see ellipsoid.h). */
 #include "ellipsoid.h"
 
 int cu_ray_ellipsoid(vec3 o, vec3 d, vec3 c, vec3 r, double *t0, double *t1)

@@ -1,5 +1,5 @@
-/* src/ellipsoid.h: ellipsoid geometry shared by the renderer, tests and path tracer: ray intersection, Kol's radial
- * distance, overlap (neighbour) masks, and the circumscribing hull mesh. */
+/* src/core/ellipsoid.h: ellipsoid geometry shared by the renderer, tests and path tracer: ray intersection, Kol's
+ * radial distance, overlap (neighbour) masks, and the circumscribing hull mesh. */
 #ifndef CU_ELLIPSOID_H
 #define CU_ELLIPSOID_H
 #include "vecmath.h"

@@ -1,4 +1,4 @@
-/* src/noise.c: builds the tileable 64^3 noise texture from an integer hash (identical on every CPU: no sin-hash,
+/* src/core/noise.c: builds the tileable 64^3 noise texture from an integer hash (identical on every CPU: no sin-hash,
  * no libm in the lattice), box-filters its mip chain on the CPU (so GPU and CPU use the same bytes), and samples it. */
 #include "noise.h"
 #include <math.h>

@@ -1,4 +1,4 @@
-/* src/noise.h: the 64^3 tileable noise texture (fixed seed, integer hash), its mip chain, and the CPU twin of the
+/* src/core/noise.h: the 64^3 tileable noise texture (fixed seed, integer hash), its mip chain, and the CPU twin of the
  * shader's fractal noise (Kol eq. 3.74) so tests and the path tracer see exactly the texel values the GPU sees. */
 #ifndef CU_NOISE_H
 #define CU_NOISE_H

@@ -1,4 +1,4 @@
-/* src/phase.h: phase functions as RGB tables over the scattering angle for the shader (one texture row each):
+/* src/core/phase.h: phase functions as RGB tables over the scattering angle for the shader (one texture row each):
  * Henyey-Greenstein, Cornette-Shanks, and (from data/) tabulated Mie. */
 #ifndef CU_PHASE_H
 #define CU_PHASE_H

@@ -1,5 +1,5 @@
-/* src/presets.h: the quality presets `[quality] preset = high | medium | low`, chosen by `cumulo sweep` (make sweep)
- * from the measured speed/accuracy curve; the table in presets.c is copied from docs/sweep_presets.txt. */
+/* src/core/presets.h: the quality presets `[quality] preset = high | medium | low`, chosen by `cumulo sweep` (make
+ * sweep) from the measured speed/accuracy curve; the table in presets.c is copied from docs/sweep_presets.txt. */
 #ifndef CU_PRESETS_H
 #define CU_PRESETS_H
 

@@ -1,4 +1,4 @@
-/* src/sky.c: Preetham daylight model (see sky.h). */
+/* src/core/sky.c: Preetham daylight model (see sky.h). */
 #include "sky.h"
 
 #define TOA_ILLUMINANCE 128.0 /* klx: solar illuminance outside the atmosphere; the sun is taken as white there */

@@ -1,4 +1,4 @@
-/* src/sky.h: the Preetham et al. 1999 daylight model on the CPU: Perez coefficients for the sky shader, the sun's
+/* src/core/sky.h: the Preetham et al. 1999 daylight model on the CPU: Perez coefficients for the sky shader, the sun's
  * irradiance after the atmosphere (Rayleigh + aerosol), and the ground radiance. Units: kcd/m^2 and klx. */
 #ifndef CU_SKY_H
 #define CU_SKY_H

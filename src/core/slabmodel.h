@@ -1,4 +1,4 @@
-/* src/slabmodel.h: Bouthors' phenomenological multiple-scattering model of a plane-parallel slab (Kol eq. 3.32),
+/* src/core/slabmodel.h: Bouthors' phenomenological multiple-scattering model of a plane-parallel slab (Kol eq. 3.32),
  * loaded from the fitted tables of tools/slab (data/slab_fit_bouthors.txt), evaluated on the CPU (the shader's twin,
  * for tests) and packed into the texture the shader samples (shaders_gles/ms_slab.glsl). */
 #ifndef CU_SLABMODEL_H

@@ -1,4 +1,5 @@
-/* src/vecmath.h: small inline double-precision vector and 4x4 matrix helpers (column-major, OpenGL conventions). */
+/* src/core/vecmath.h: small inline double-precision vector and 4x4 matrix helpers (column-major, OpenGL
+ * conventions). */
 #ifndef CU_VECMATH_H
 #define CU_VECMATH_H
 #include <math.h>

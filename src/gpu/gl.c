@@ -1,4 +1,4 @@
-/* src/gl.c: GL entry-point loading and shader compilation with file-named errors (see gl.h). */
+/* src/gpu/gl.c: GL entry-point loading and shader compilation with file-named errors (see gl.h). */
 #include "gl.h"
 #include "error.h"
 #include <dlfcn.h>

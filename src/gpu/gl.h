@@ -1,4 +1,4 @@
-/* src/gl.h: GLES 3.0 entry points loaded through the caller's get_proc_address into a per-renderer table (no
+/* src/gpu/gl.h: GLES 3.0 entry points loaded through the caller's get_proc_address into a per-renderer table (no
  * globals, no link-time GL symbols, so one binary can drive EGL and OSMesa contexts), and shader build helpers. */
 #ifndef CU_GL_H
 #define CU_GL_H

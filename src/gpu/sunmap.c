@@ -1,4 +1,4 @@
-/* src/sunmap.c: sun-map geometry on the CPU (see sunmap.h). */
+/* src/gpu/sunmap.c: sun-map geometry on the CPU (see sunmap.h). */
 #include "sunmap.h"
 
 void cu_sun_basis(vec3 d, vec3 *right, vec3 *up)

@@ -1,5 +1,5 @@
-/* src/sunmap.h: CPU side of the sun's opacity map: how many separate in-cloud intervals a sun ray can cross (the map's
- * layer count follows the scene), and the sun-space frame shared with the shaders. */
+/* src/gpu/sunmap.h: CPU side of the sun's opacity map: how many separate in-cloud intervals a sun ray can cross (the
+ * map's layer count follows the scene), and the sun-space frame shared with the shaders. */
 #ifndef CU_SUNMAP_H
 #define CU_SUNMAP_H
 #include "density.h"

@@ -1,4 +1,4 @@
-/* tests/test_math.c: geometry and noise maths against closed forms: ray-ellipsoid chords (tangent, inside, far),
+/* tests/core/test_math.c: geometry and noise maths against closed forms: ray-ellipsoid chords (tangent, inside, far),
  * Kol's radial distance vs the exact Euclidean distance, sigmoid, log spacing, noise range/tiling/determinism,
  * neighbour lists vs the full maximum, and hull containment. */
 #include <setjmp.h>

@@ -1,4 +1,4 @@
-/* tests/test_phase.c: the engine's phase tables: analytic ones against closed forms (normalisation, mean cosine,
+/* tests/core/test_phase.c: the engine's phase tables: analytic ones against closed forms (normalisation, mean cosine,
  * VALIDATION.md values), the committed Mie table as loaded and chopped (eqs. 3.64-3.68), and the table parser on
  * hostile files with exact messages. */
 #include <setjmp.h>

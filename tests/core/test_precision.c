@@ -1,4 +1,4 @@
-/* tests/test_precision.c: a C twin of the cloud shader's per-sample maths (cloud.frag), instantiated in double,
+/* tests/core/test_precision.c: a C twin of the cloud shader's per-sample maths (cloud.frag), instantiated in double,
  * float (highp on every GLES 3 GPU) and _Float16 (mediump on Mali/V3D/Adreno), run over the extremes of issue 7.
  * It prints where each precision breaks and asserts the design claims: fp32 in cloud-local coordinates is enough
  * everywhere in the matrix, and fp16 is not (positions, distances and optical depths must be highp). */

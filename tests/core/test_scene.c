@@ -1,4 +1,5 @@
-/* tests/test_scene.c: the scene parser on good files and on hostile input, each bad case with its exact message. */
+/* tests/core/test_scene.c: the scene parser on good files and on hostile input, each bad case with its exact
+ * message. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

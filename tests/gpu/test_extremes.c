@@ -1,5 +1,5 @@
-/* tests/test_extremes.c: numerical stability at the extremes (issue 7's matrix): sun below, at and above the horizon
- * and at the zenith, sun exactly in front of and behind the camera, camera inside / on / at the centre of an
+/* tests/gpu/test_extremes.c: numerical stability at the extremes (issue 7's matrix): sun below, at and above the
+ * horizon and at the zenith, sun exactly in front of and behind the camera, camera inside / on / at the centre of an
  * ellipsoid, tangent rays, clouds 10 m and 100 km away, radii from 1 m to 50 km, density from 0 to 1e6 cm^-3, h = 0
  * and h larger than the radii, 64 ellipsoids through one point. Every render: finite, non-negative, bounded; and
  * small steps of an input give small changes of the image. CUMULO_STRESS=1 (make stress) renders larger images

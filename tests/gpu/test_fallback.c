@@ -1,4 +1,4 @@
-/* tests/test_fallback.c: the GLES 3.0 floor. A context without float or half-float colour targets (Mesa told to
+/* tests/gpu/test_fallback.c: the GLES 3.0 floor. A context without float or half-float colour targets (Mesa told to
  * hide EXT_color_buffer_float and _half_float, as a GLES 3.0 driver without them) must fall back with a warning:
  * light.shadow peel -> front (no opacity map), ms.mode slab -> octaves (no slab maps), an RGBA8 HDR target whose
  * highlights clip, and still draw the same picture where nothing clips. Each render runs in a child process: Mesa

@@ -1,5 +1,5 @@
-/* tests/test_ms.c: the multiple-scattering slab model: its table loader against hostile input, and renders read back
- * as float: the brightness of a lit cloud never exceeds the sunlight it intercepts, and small sun steps give small
+/* tests/gpu/test_ms.c: the multiple-scattering slab model: its table loader against hostile input, and renders read
+ * back as float: the brightness of a lit cloud never exceeds the sunlight it intercepts, and small sun steps give small
  * image changes. (Agreement with the Monte Carlo slab simulator is tests/test_ms_slab.sh.) */
 #include <setjmp.h>
 #include <stdarg.h>

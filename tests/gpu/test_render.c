@@ -1,4 +1,4 @@
-/* tests/test_render.c: the renderer through both headless back ends (EGL surfaceless GLES 3.2 and OSMesa GL 4.5
+/* tests/gpu/test_render.c: the renderer through both headless back ends (EGL surfaceless GLES 3.2 and OSMesa GL 4.5
  * core): Beer-Lambert opacity along chords, the union of overlapping ellipsoids integrated once, an empty scene is
  * exactly the sky, no NaN/Inf anywhere, camera continuity into the cloud, reference images, back ends agree. */
 #include <setjmp.h>

@@ -1,4 +1,5 @@
-/* tests/test_sunmap.c: the sun's opacity map (light.shadow = peel) against the CPU: every texel's intervals match the
+/* tests/gpu/test_sunmap.c: the sun's opacity map (light.shadow = peel) against the CPU: every texel's intervals
+ * match the
  * analytic union of the ellipsoids (nested, touching, tangent, gap and concave scenes), tau at probe points matches
  * a fine CPU ray-march of the same density (noise included), Kol's front-depth estimate fails where the map does
  * not, and no map holds a NaN. The trade-study alternatives (light.shadow = osm: regular-slice opacity shadow maps,

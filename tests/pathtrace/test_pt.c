@@ -1,4 +1,4 @@
-/* tools/pathtrace/test_pt.c: validation of the reference path tracer against closed forms and independent numbers
+/* tests/pathtrace/test_pt.c: validation of the reference path tracer against closed forms and independent numbers
  * (VALIDATION.md): phase sampling, Beer-Lambert chords, furnace, plane-parallel slab R/T, determinism, camera. */
 #include "pt.h"
 #include <setjmp.h>

@@ -1,4 +1,5 @@
-/* platform/test_drm.c: the DRM/KMS back end (drm.c) against a fake Raspberry-Pi-like display stack: libdrm, GBM and
+/* tests/platform/test_drm.c: the DRM/KMS back end (drm.c) against a fake Raspberry-Pi-like display stack: libdrm,
+ * GBM and
  * the EGL helpers are defined here, /dev/dri is faked through ld --wrap of open/stat/opendir. Checks device probing
  * (by-path first, render-only V3D skipped), connector and mode choice, atomic and legacy page flipping with vsync
  * events, restoring the console's CRTC on close, and the one-line errors. No GPU or /dev/dri needed. */

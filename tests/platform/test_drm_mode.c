@@ -1,4 +1,5 @@
-/* platform/test_drm_mode.c: `--mode` parsing and the DRM mode choice (preferred, largest, exact size and refresh). */
+/* tests/platform/test_drm_mode.c: `--mode` parsing and the DRM mode choice (preferred, largest, exact size and
+ * refresh). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>

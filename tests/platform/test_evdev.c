@@ -1,4 +1,4 @@
-/* platform/test_evdev.c: evdev decoding on recorded `struct input_event` streams (USB dial, keyboard with
+/* tests/platform/test_evdev.c: evdev decoding on recorded `struct input_event` streams (USB dial, keyboard with
  * auto-repeat, Pi rotary-encoder overlay, a mouse, SYN_DROPPED) and the one-line errors of opening devices. */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* platform/test_evdev_dev.c: the device half of evdev.c (open by path or name, capability probe, grab, reading,
+/* tests/platform/test_evdev_dev.c: the device half of evdev.c (open by path or name, capability probe, grab, reading,
  * unplug, permission errors) against fake /dev/input devices: open/ioctl/read/opendir are wrapped at link time
  * (ld --wrap), each fake device is a pipe carrying recorded struct input_event streams. */
 #include <stdarg.h>

@@ -1,4 +1,5 @@
-/* platform/test_gpio.c: the GPIO knob layer (gpio.c) against a scripted fake of libgpiod, built twice: with the v1
+/* tests/platform/test_gpio.c: the GPIO knob layer (gpio.c) against a scripted fake of libgpiod, built twice: with
+ * the v1
  * glue (gpio_v1.c, Debian 12's libgpiod 1.6 header) and with the v2 glue (gpio_v2.c against gpiod_v2/gpiod.h, so the
  * v2 code runs on a machine that only has libgpiod 1.6). Checks the request (consumer, both edges, pull-up, v2
  * debounce), timestamp ordering of edges from several queues, the button, no edge lost while the caller is busy for longer than the kernel's queue

@@ -1,4 +1,4 @@
-/* platform/test_input.c: `--input` parsing (good and bad), the stdin command language and its line splitter, and
+/* tests/platform/test_input.c: `--input` parsing (good and bad), the stdin command language and its line splitter, and
  * the sun mapping (axis toggle, acceleration, limits). */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,5 +1,5 @@
-/* platform/test_input_set.c: the inputs of one run through the back-end table (input_set.c): --input values in and
- * out of the set, stdin read through poll with each action's source, the end of a script, and a device that does
+/* tests/platform/test_input_set.c: the inputs of one run through the back-end table (input_set.c): --input values in
+ * and out of the set, stdin read through poll with each action's source, the end of a script, and a device that does
  * not open (logged, left closed, the run told that no requested input opened). */
 #include <stdarg.h>
 #include <stddef.h>

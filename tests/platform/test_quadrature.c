@@ -1,4 +1,5 @@
-/* platform/test_quadrature.c: the quadrature decoder and button debouncer on synthetic edge traces (clean turns at
+/* tests/platform/test_quadrature.c: the quadrature decoder and button debouncer on synthetic edge traces (clean
+ * turns at
  * several speeds, bounce on every edge, missed edges, noise bursts, simultaneous edges) with exact detent counts. */
 #include <stdarg.h>
 #include <stddef.h>
