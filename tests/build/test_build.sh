@@ -103,6 +103,16 @@ man -l "$D/usr/share/man/man1/cumulo.1" >/dev/null 2>"$T/man.err" && [ ! -s "$T/
   t_ok "cumulo(1) renders" || t_fail "cumulo(1) renders" "$(head -2 "$T/man.err")"
 man -l "$D/usr/share/man/man5/cumulo.scene.5" >/dev/null 2>"$T/man.err" && [ ! -s "$T/man.err" ] &&
   t_ok "cumulo.scene(5) renders" || t_fail "cumulo.scene(5) renders" "$(head -2 "$T/man.err")"
+# The staged copy works as it stands: the example built through pkg-config with the DESTDIR as sysroot, run against
+# the staged library and tables.
+mkdir -p "$T/staged"; cp "$SRC/tests/build/embed_example.c" "$T/staged/"
+pcs="env PKG_CONFIG_PATH=$D/usr/lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$D pkg-config"
+if (cd "$T/staged" && cc -std=c99 -Wall -Wextra -Werror embed_example.c -o embed $($pcs --cflags --libs cumulo) \
+      -lEGL -lGLESv2) >"$log" 2>&1 &&
+   out=$(cd "$T/staged" && LD_LIBRARY_PATH=$D/usr/lib CUMULO_DATA_DIR=$D/usr/share/cumulo/data \
+           ./embed "$D/usr/share/cumulo/scenes/cumulus.scene" 2>&1); then
+  t_ok "example against the DESTDIR copy (pkg-config with the DESTDIR as sysroot)"
+else t_fail "example against the DESTDIR copy" "$(tail -3 "$log") $out"; fi
 $MK uninstall DESTDIR="$D" PREFIX=/usr >"$log" 2>&1
 left=$(find "$D" -type f -o -type l | sed "s|^$D/||" | tr '\n' ' ')
 [ -z "$left" ] && t_ok "make uninstall removes every file" || t_fail "make uninstall removes every file" "left: $left"
