@@ -41,7 +41,7 @@ TEST_ENV := LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=2 MES
 ALL_BINS    :=
 CHECK_TESTS :=
 
-.PHONY: all check demo clean install uninstall bench sweep stress FORCE
+.PHONY: all check demo clean install uninstall sweep stress help FORCE
 all:
 
 # Goals that need no configuration (and so install nothing and probe nothing).
@@ -63,7 +63,7 @@ include $(B)/config.mk
 endif
 
 # Flags files: one per component, rewritten only when the flags change, so objects depend on their flags.
-# $(call flags_file,NAME,FLAGS)
+# $(eval $(call flags_rule,NAME,FLAGS)): build/flags/NAME holds FLAGS; objects of that part depend on it.
 define flags_rule
 $(B)/flags/$(1): FORCE
 	@mkdir -p $$(@D); printf '%s\n' '$$(subst ','"'"',$(2))' >$$@.tmp; \
@@ -94,6 +94,16 @@ demo: $(B)/cumulo
 
 clean:
 	rm -rf $(B)
+
+help:
+	@echo "make [all]        the library, the programs and the tools (configures first; installs missing packages)"
+	@echo "make demo         render scenes/cumulus.scene to $(B)/demo.png"
+	@echo "make check        every test; make stress: the long ones; make vmcheck: real kernel drivers in a VM"
+	@echo "make install      PREFIX=/usr/local LIBDIR DATADIR MANDIR DESTDIR; make uninstall with the same PREFIX"
+	@echo "make deps         build and run packages; deps-test, deps-vm, deps-plots: the rest"
+	@echo "make sweep        the speed/accuracy sweep (25 min); make refs: rewrite the reference images"
+	@echo "make platform-info  what this machine's packages allow (./configure's summary)"
+	@echo "variables: WITH_DRM|X11|WAYLAND|GPIO|OSMESA=auto|yes|no, OPT, CFLAGS, WERROR, PKG_CONFIG, NO_DEPS=1, B"
 
 FORCE:
 
