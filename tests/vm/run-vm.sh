@@ -4,7 +4,7 @@
 # from this tree (path relative to the top of the tree) with its arguments, and exits with the guest script's
 # status. The serial console (kernel messages and the script's output) goes to stdout and to
 # build/vm/console.log.  Usage: sh tests/vm/run-vm.sh tests/vm/guest/all.sh [ARGS...]
-# Environment: VM_TIMEOUT (seconds, default 1500), VM_MEM (MiB, default 1024), VM_CPUS (default 1), VM_CPU (qemu
+# Environment: VM_TIMEOUT (seconds, default 2400), VM_MEM (MiB, default 1024), VM_CPUS (default 1), VM_CPU (qemu
 # -cpu model, default max).
 set -u
 repo=$(pwd)
@@ -25,7 +25,7 @@ mkdir -p "$VM/scratch"
 append="console=ttyS0 loglevel=4 panic=1 root=hostroot rootfstype=9p rootflags=trans=virtio,version=9p2000.L,msize=262144 ro init=/bin/sh -- $repo/tests/vm/guest-init.sh $repo $*"
 start=$(date +%s)
 {
-  timeout "${VM_TIMEOUT:-1500}" qemu-system-x86_64 -machine pc -accel tcg -cpu "${VM_CPU:-max}" -smp "${VM_CPUS:-1}" \
+  timeout "${VM_TIMEOUT:-2400}" qemu-system-x86_64 -machine pc -accel tcg -cpu "${VM_CPU:-max}" -smp "${VM_CPUS:-1}" \
     -m "${VM_MEM:-1024}" -display none -monitor none -serial stdio -no-reboot -nodefaults \
     -kernel "$VM/bzImage" -append "$append" \
     -virtfs local,path=/,mount_tag=hostroot,readonly=on,multidevs=remap,security_model=none \
@@ -39,7 +39,7 @@ guest_rc=$(cat "$VM/scratch/rc" 2>/dev/null)
 # The status file is the truth; qemu's own status must agree with it (isa-debug-exit: status*2+1), else the
 # guest did not power off the way it should (a timeout is 124, a panic reboot 0).
 if [ -z "$guest_rc" ]; then
-  echo "vm: the guest did not finish within ${VM_TIMEOUT:-1500} s or crashed (qemu status $qemu_rc; console:" \
+  echo "vm: the guest did not finish within ${VM_TIMEOUT:-2400} s or crashed (qemu status $qemu_rc; console:" \
        "build/vm/console.log)" >&2
   exit 4
 fi

@@ -38,15 +38,17 @@ hold_check() {
   if grep -q '^restored ' $OUT/hold.out; then t_ok "$1"; else t_fail "$1" "$(cat $OUT/hold.out)"; fi
 }
 
-# kiosk RUN_NAME MODESETTING [env...]: NF frames through the back end, flips counted by the kernel. Few frames: under
-# emulation each 640x480 frame of llvmpipe takes seconds.
+# kiosk RUN_NAME MODESETTING [env...]: NF frames through the back end, flips counted by the kernel. Few frames, and
+# the low preset: under emulation a 640x480 frame of llvmpipe at the default settings takes about two minutes, and
+# what is tested here is the display path, not the shading (the headless render below uses the same settings).
 NF=${VM_DRM_FRAMES:-4}
+Q=${VM_DRM_QUALITY:-quality.preset=low}
 kiosk() {
   name=$1; how=$2; shift 2
   hold_start
   flips_reset
   t=$(elapsed)
-  env "$@" $C run $S --platform drm --mode $MODE --frames $NF --no-stdin >$OUT/$name.out 2>$OUT/$name.err
+  env "$@" $C run $S --platform drm --mode $MODE --frames $NF --no-stdin --set $Q >$OUT/$name.out 2>$OUT/$name.err
   rc=$?
   n=$(flips)
   cp $TR/trace $OUT/$name.trace
@@ -67,7 +69,7 @@ kiosk drm_legacy legacy CUMULO_DRM_LEGACY=1
 hold_start
 flips_reset
 rm -f $F/term.fifo; mkfifo $F/term.fifo
-$C run $S --platform drm --mode $MODE <$F/term.fifo >$OUT/term.out 2>$OUT/term.err &
+$C run $S --platform drm --mode $MODE --set $Q <$F/term.fifo >$OUT/term.out 2>$OUT/term.err &
 pid=$!
 exec 6>$F/term.fifo
 i=0; while [ $i -lt 1200 ] && [ "$(flips)" -lt 2 ] && kill -0 $pid 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
@@ -84,7 +86,7 @@ else t_fail drm_sigterm_mid_run_clean_exit "exit $rc after $n flips: $(tail -2 $
 hold_check drm_sigterm_crtc_restored
 
 t=$(elapsed)
-$C render $S --size $MODE -o $OUT/headless.png >$OUT/render.out 2>&1 || cat $OUT/render.out
+$C render $S --size $MODE --set $Q -o $OUT/headless.png >$OUT/render.out 2>&1 || cat $OUT/render.out
 echo "drm: headless render took $(awk -v a="$t" -v b="$(elapsed)" 'BEGIN { printf "%.1f", b - a }') s"
 if [ $snap -eq 0 ] && $H/vm_kms compare $OUT/screen.ppm $OUT/headless.png 1.5 0.005 >$OUT/compare.txt; then
   t_ok drm_screen_matches_headless_render
