@@ -99,26 +99,26 @@ static int parse_number(const char *opt, const char *v, double lo, double hi, in
     return 0;
 }
 
-enum { OPT_COMMON = 256, OPT_FULLSCREEN, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
+/* Above app/session.h's CLI_OPT_* ids, which the common options keep. */
+enum { OPT_FULLSCREEN = 0x200, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
        OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION };
 
 #define ARG(name, id) { name, required_argument, NULL, id }
 #define FLAG(name, id) { name, no_argument, NULL, id }
 static const struct option long_opts[] = {
     FLAG("help", 'h'), FLAG("verbose", 'v'), FLAG("fullscreen", OPT_FULLSCREEN), FLAG("no-stdin", OPT_NO_STDIN),
-    ARG("size", OPT_COMMON), ARG("backend", OPT_COMMON), ARG("platform", OPT_COMMON), ARG("set", OPT_COMMON),
+    ARG("size", CLI_OPT_SIZE), ARG("backend", CLI_OPT_BACKEND), ARG("platform", CLI_OPT_BACKEND), ARG("set", CLI_OPT_SET),
     ARG("frames", OPT_FRAMES), ARG("mode", OPT_MODE), ARG("device", OPT_DEVICE), ARG("input", OPT_INPUT),
     ARG("knob", OPT_KNOB), ARG("step", OPT_STEP), ARG("accel", OPT_ACCEL), ARG("sun-elevation-range", OPT_EL_RANGE),
-    ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("data-dir", OPT_COMMON), FLAG("version", OPT_VERSION),
+    ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("data-dir", CLI_OPT_DATA_DIR), FLAG("version", OPT_VERSION),
     { NULL, 0, NULL, 0 },
 };
 
 /* One option and its value; 0, or 1 after printing why the value is wrong. */
 static int take_option(run_args *a, int c, const char *name, char *v)
 {
-    char err[512] = "", *common[2] = { (char *)name, v }; /* session.c checks its options in an argv */
+    char err[512] = "";
     double x;
-    int i = 0;
     switch (c) {
     case 'v': a->o.verbose = 1; return 0;
     case OPT_FULLSCREEN: a->dopt.fullscreen = 1; return 0;
@@ -136,7 +136,8 @@ static int take_option(run_args *a, int c, const char *name, char *v)
             return 1;
         a->sun.step_el = a->sun.step_az / 2.0;
         return 0;
-    case OPT_COMMON: return cli_common_option(&a->o, 2, common, &i) < 0;
+    case CLI_OPT_SIZE: case CLI_OPT_BACKEND: case CLI_OPT_SET: case CLI_OPT_DATA_DIR:
+        return cli_common_getopt(&a->o, c, v, "cumulo") < 0;
     case OPT_EL_RANGE: a->el_range = v; return 0;
     case OPT_AZ_RANGE: a->az_range = v; return 0;
     case OPT_INPUT:

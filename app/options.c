@@ -41,27 +41,6 @@ int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
     }
 }
 
-int cli_common_option(cli_opts *o, int argc, char **argv, int *i)
-{
-    static const struct { const char *name; int id; } opts[] = {
-        {"--size", CLI_OPT_SIZE}, {"--backend", CLI_OPT_BACKEND}, {"--platform", CLI_OPT_BACKEND},
-        {"--set", CLI_OPT_SET},   {"--data-dir", CLI_OPT_DATA_DIR},
-    };
-    const char *a = argv[*i];
-    if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0)
-        return cli_common_getopt(o, 'v', NULL, "cumulo");
-    for (size_t k = 0; k < sizeof opts / sizeof opts[0]; k++) {
-        if (strcmp(a, opts[k].name) != 0)
-            continue;
-        if (*i + 1 >= argc) {
-            fprintf(stderr, "cumulo: %s needs a value\n", a);
-            return -1;
-        }
-        return cli_common_getopt(o, opts[k].id, argv[++*i], "cumulo");
-    }
-    return 0;
-}
-
 void cli_print_version(FILE *f, const char *program)
 {
     fprintf(f, "%s %s (%s), libcumulo %s\n", program, CU_VERSION, CU_GIT_DESCRIBE, cu_version());

@@ -52,8 +52,6 @@ enum { CLI_OPT_SIZE = 0x100, CLI_OPT_BACKEND, CLI_OPT_SET, CLI_OPT_DATA_DIR, CLI
 /* Handles a common option returned by getopt_long (id, optarg): 1 = handled, 0 = not common, -1 = bad value (one
  * line printed, exit 2). `cmd` names the subcommand in messages. */
 int cli_common_getopt(cli_opts *o, int id, const char *arg, const char *cmd);
-/* Consumes a common option at argv[*i] for hand-written parsers: 1 if it was one, 0 if not, -1 on a bad value. */
-int cli_common_option(cli_opts *o, int argc, char **argv, int *i);
 /* Prints "cumulo VERSION (git describe)" and the display back ends and inputs of this build. */
 void cli_print_version(FILE *f, const char *program);
 /* The tables' folder: --data-dir, else $CUMULO_DATA_DIR, else ../data beside the executable when it holds the
