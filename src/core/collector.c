@@ -33,12 +33,30 @@ static int find_node(const double *v, int n, double x)
 
 typedef struct { double v[9]; int line; } row;
 
+static int read_collector(cu_collector *c, cu_textfile f, cu_error *err);
+
 int cu_collector_load(cu_collector *c, const char *path, cu_error *err)
 {
     memset(c, 0, sizeof *c);
     cu_textfile f;
     if (cu_textfile_open(&f, path, "the collector table", "scripts/collector_table.sh makes it", err))
         return 1;
+    return read_collector(c, f, err);
+}
+
+int cu_collector_parse(cu_collector *c, const char *name, const char *text, size_t len, cu_error *err)
+{
+    memset(c, 0, sizeof *c);
+    cu_textfile f;
+    if (cu_textfile_open_mem(&f, name, text, len, err))
+        return 1;
+    return read_collector(c, f, err);
+}
+
+/* The table from f, an open reader that this closes. */
+static int read_collector(cu_collector *c, cu_textfile f, cu_error *err)
+{
+    const char *path = f.path;
     size_t cap = 1 << 14, n = 0;
     row *rows = malloc(cap * sizeof *rows);
     unsigned char *seen = NULL;

@@ -21,6 +21,8 @@ typedef struct cu_collector {
 /* Reads the table: a complete regular grid (every combination exactly once, ascending nodes, depths j t / 10),
  * finite numbers, sigma >= 0. Errors read "path:line: ...". */
 int cu_collector_load(cu_collector *c, const char *path, cu_error *err);
+/* The same reader over text[0..len), named name in messages. */
+int cu_collector_parse(cu_collector *c, const char *name, const char *text, size_t len, cu_error *err);
 void cu_collector_free(cu_collector *c);
 /* RGBA32F texture: width ND * np (depth fastest), height nv * nl * nt (theta_V fastest); texel = (cx, cz, sigma, 0). */
 void cu_collector_pack(const cu_collector *c, float *rgba);

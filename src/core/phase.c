@@ -36,6 +36,8 @@ static int read_numbers(const cu_textfile *f, char *const *tok, int ntok, double
     return 0;
 }
 
+static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err);
+
 int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
 {
     memset(t, 0, sizeof *t);
@@ -44,6 +46,22 @@ int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
     cu_textfile f;
     if (cu_textfile_open(&f, path, "the Mie table", hint, err))
         return 1;
+    return read_mie(t, f, err);
+}
+
+int cu_phase_table_parse_mie(cu_phase_table *t, const char *name, const char *text, size_t len, cu_error *err)
+{
+    memset(t, 0, sizeof *t);
+    cu_textfile f;
+    if (cu_textfile_open_mem(&f, name, text, len, err))
+        return 1;
+    return read_mie(t, f, err);
+}
+
+/* The table from f, an open reader that this closes. */
+static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err)
+{
+    const char *path = f.path;
     static const char *const row_names[4] = {"theta_deg", "P_r", "P_g", "P_b"};
     int have = 0, nang = -1, got = 0, rc = 0, r;
     double chop = -1, lam[3];

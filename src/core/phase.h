@@ -26,6 +26,8 @@ int cu_phase_table_build(cu_phase_table *t, const cu_scene *s, const char *data_
 /* Reads a Mie table (format in tools/mie; written by build/cumulo-mie --table) and resamples it onto the engine's
  * grid, split into P~ and P_p at the table's chop angle. Errors name file:line. */
 int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err);
+/* The same reader over text[0..len), named name in messages. */
+int cu_phase_table_parse_mie(cu_phase_table *t, const char *name, const char *text, size_t len, cu_error *err);
 void cu_phase_table_free(cu_phase_table *t);
 /* Core extinction k_e in m^-1 for scene s with this table: rho_0 * sigma_ext (the table's green channel, one scalar
  * so opacity stays a scalar; the channels differ by ~1%) when the table has one, else rho_0 * 2 pi r_e^2 (Kol eq.

@@ -124,12 +124,31 @@ static void conserve_energy(cu_slab_model *m, cu_slab_transport tr)
 /* Storage for one parsed value: which field, group, thickness node and angle node. */
 typedef struct { int field, group, it, in; double value; int line; } entry;
 
+static int read_model(cu_slab_model *m, cu_textfile tf, cu_slab_transport tr, cu_error *err);
+
 int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr, cu_error *err)
 {
     memset(m, 0, sizeof *m);
     cu_textfile tf;
     if (cu_textfile_open(&tf, path, "the slab model table", "tools/slab/gen_tables.sh makes it", err))
         return 1;
+    return read_model(m, tf, tr, err);
+}
+
+int cu_slab_model_parse(cu_slab_model *m, const char *name, const char *text, size_t len, cu_slab_transport tr,
+                        cu_error *err)
+{
+    memset(m, 0, sizeof *m);
+    cu_textfile tf;
+    if (cu_textfile_open_mem(&tf, name, text, len, err))
+        return 1;
+    return read_model(m, tf, tr, err);
+}
+
+/* The table from tf, an open reader that this closes. */
+static int read_model(cu_slab_model *m, cu_textfile tf, cu_slab_transport tr, cu_error *err)
+{
+    const char *path = tf.path;
     size_t cap = 4096, n = 0;
     entry *e = malloc(cap * sizeof *e);
     int rc = 1, r;

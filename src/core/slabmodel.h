@@ -39,6 +39,9 @@ typedef struct cu_slab_transport {
  * every group and thickness, with finite values (and positive where the model takes a logarithm). Errors read
  * "path:line: ...". */
 int cu_slab_model_load(cu_slab_model *m, const char *path, cu_slab_transport tr, cu_error *err);
+/* The same reader over text[0..len), named name in messages. */
+int cu_slab_model_parse(cu_slab_model *m, const char *name, const char *text, size_t len, cu_slab_transport tr,
+                        cu_error *err);
 
 /* The transport of the tables committed in data/ (which phase function tools/slab/gen_tables.sh used for them). */
 #define CU_SLAB_TABLES_MIE 1

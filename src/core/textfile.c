@@ -17,6 +17,17 @@ int cu_textfile_open(cu_textfile *f, const char *path, const char *what, const c
     return 0;
 }
 
+int cu_textfile_open_mem(cu_textfile *f, const char *name, const char *text, size_t len, cu_error *err)
+{
+    memset(f, 0, sizeof *f);
+    f->path = name;
+    /* fmemopen only reads a "r" stream, so the cast drops no promise; an empty buffer reads as an empty file. */
+    f->fp = fmemopen(len ? (void *)text : (void *)"", len, "r");
+    if (!f->fp)
+        return cu_fail(err, "%s: cannot read the table from memory: %s", name, strerror(errno));
+    return 0;
+}
+
 static int blank(char c)
 {
     return c == ' ' || c == '\t' || c == '\r' || c == '\n';

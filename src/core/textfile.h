@@ -29,6 +29,9 @@ int cu_textfile_next(cu_textfile *f, cu_error *err);
 
 void cu_textfile_close(cu_textfile *f);
 
+/* The same reader over text[0..len), named name in messages: the loaders' in-memory entries (fuzz targets, tests). */
+int cu_textfile_open_mem(cu_textfile *f, const char *name, const char *text, size_t len, cu_error *err);
+
 /* How a token reads as a number: the whole token must be one strtod number, finite, and finite once stored as a
  * float, since the tables end up in float textures (a double such as 1e39 would become inf there). */
 typedef enum { CU_NUM_OK = 0, CU_NUM_BAD, CU_NUM_NOT_FLOAT } cu_num_status;
