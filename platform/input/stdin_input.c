@@ -23,6 +23,23 @@ static int split(char *s, char *w[4])
     return n;
 }
 
+/* What the user typed, fit to be echoed in a message: at most 40 bytes of it, every byte that is not printable ASCII
+ * (a control, an escape sequence's ESC, DEL, a byte of UTF-8) written as \xNN, so nothing reaches the terminal as a
+ * command to it. */
+static const char *shown(const char *w, char buf[4 * 40 + 1])
+{
+    char *o = buf;
+    for (int i = 0; w[i] && i < 40; i++) {
+        unsigned char c = (unsigned char)w[i];
+        if (c >= 0x20 && c < 0x7f)
+            *o++ = (char)c;
+        else
+            o += sprintf(o, "\\x%02x", c);
+    }
+    *o = 0;
+    return buf;
+}
+
 static int number(const char *w, double lo, double hi, double *out)
 {
     char *end;
@@ -48,17 +65,18 @@ int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen)
         return 0;
     const char *c = w[0];
     double x, y;
+    char shw[4 * 40 + 1];
     if (!strcmp(c, "sun")) {
         if (n != 3) {
             snprintf(err, errlen, "stdin: 'sun' needs elevation and azimuth in degrees, e.g. 'sun 35 120'");
             return 1;
         }
         if (number(w[1], -90, 90, &x)) {
-            snprintf(err, errlen, "stdin: 'sun': elevation '%s' is not a number in -90..90", w[1]);
+            snprintf(err, errlen, "stdin: 'sun': elevation '%s' is not a number in -90..90", shown(w[1], shw));
             return 1;
         }
         if (number(w[2], -1e6, 1e6, &y)) {
-            snprintf(err, errlen, "stdin: 'sun': azimuth '%s' is not a number of degrees", w[2]);
+            snprintf(err, errlen, "stdin: 'sun': azimuth '%s' is not a number of degrees", shown(w[2], shw));
             return 1;
         }
         out->kind = CU_ACT_SET_SUN;
@@ -93,14 +111,14 @@ int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen)
     for (size_t i = 0; i < sizeof simple / sizeof simple[0]; i++) {
         if (!strcmp(c, simple[i].name)) {
             if (n != 1) {
-                snprintf(err, errlen, "stdin: '%s' takes no arguments", c);
+                snprintf(err, errlen, "stdin: '%s' takes no arguments", shown(c, shw));
                 return 1;
             }
             out->kind = simple[i].kind;
             return 0;
         }
     }
-    snprintf(err, errlen, "stdin: unknown command '%.40s' (commands: " CMDS ")", c);
+    snprintf(err, errlen, "stdin: unknown command '%s' (commands: " CMDS ")", shown(c, shw));
     return 1;
 }
 
