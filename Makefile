@@ -45,10 +45,11 @@ CHECK_TESTS :=
 all:
 
 # Goals that need no configuration (and so install nothing and probe nothing).
-NO_CONFIG_GOALS := clean deps deps-test deps-vm deps-plots deps-all uninstall help
+NO_CONFIG_GOALS := clean sanitize deps deps-test deps-vm deps-fuzz deps-plots deps-all uninstall help
 CONFIGURED := $(if $(MAKECMDGOALS),$(filter-out $(NO_CONFIG_GOALS),$(MAKECMDGOALS)),all)
 
 include mk/deps.mk
+include mk/sanitize.mk
 
 ifneq ($(CONFIGURED),)
 CONFIGURE_ARGS := --builddir=$(B) --prefix=$(PREFIX) --libdir=$(LIBDIR) --datadir=$(DATADIR) --mandir=$(MANDIR) \
@@ -58,6 +59,7 @@ CONFIGURE_ARGS := --builddir=$(B) --prefix=$(PREFIX) --libdir=$(LIBDIR) --datadi
 $(B)/config.mk: FORCE
 	@$(DEPS_ENSURE_BUILD)
 	@$(if $(filter check stress vmcheck test-%,$(MAKECMDGOALS)),$(DEPS_ENSURE_TEST))
+	@$(if $(filter fuzz fuzz-%,$(MAKECMDGOALS)),$(DEPS_ENSURE_FUZZ))
 	@sh ./configure --quiet $(CONFIGURE_ARGS)
 include $(B)/config.mk
 endif
@@ -78,6 +80,7 @@ include tools/slab/slab.mk
 include tools/pathtrace/pathtrace.mk
 include tools/keys/keys.mk
 include tests/tests.mk
+include tests/fuzz/fuzz.mk
 include tests/vm/vm.mk
 include tools/sweep/sweep.mk
 include mk/install.mk
@@ -85,8 +88,8 @@ include mk/install.mk
 all: $(ALL_BINS)
 
 # The README's test command: builds everything, runs every test, prints "N passed, N failed, N skipped".
-check: all $(CHECK_TESTS)
-	@$(TEST_ENV) sh tests/run_tests.sh $(CHECK_TESTS)
+check: all $(CHECK_TESTS_RUN)
+	@$(TEST_ENV) sh tests/run_tests.sh $(CHECK_TESTS_RUN)
 
 demo: $(B)/cumulo
 	@$(TEST_ENV) $(B)/cumulo render scenes/cumulus.scene -o $(B)/demo.png
@@ -99,15 +102,19 @@ help:
 	@echo "make [all]        the library, the programs and the tools (configures first; installs missing packages)"
 	@echo "make demo         render scenes/cumulus.scene to $(B)/demo.png"
 	@echo "make check        every test; make stress: the long ones; make vmcheck: real kernel drivers in a VM"
+	@echo "make sanitize     make check's tests built with ASan + UBSan (in $(B)/sanitize); make fuzz: libFuzzer"
 	@echo "make install      PREFIX=/usr/local LIBDIR DATADIR MANDIR DESTDIR; make uninstall with the same PREFIX"
-	@echo "make deps         build and run packages; deps-test, deps-vm, deps-plots: the rest"
+	@echo "make deps         build and run packages; deps-test, deps-vm, deps-fuzz, deps-plots: the rest"
 	@echo "make sweep        the speed/accuracy sweep (25 min); make refs: rewrite the reference images"
 	@echo "make platform-info  what this machine's packages allow (./configure's summary)"
 	@echo "variables: WITH_DRM|X11|WAYLAND|GPIO|OSMESA=auto|yes|no, OPT, CFLAGS, WERROR, PKG_CONFIG, NO_DEPS=1, B"
+	@echo "           SANITIZE=1 (make check under ASan + UBSan), FUZZ_SECONDS=60, FUZZ_JOBS=2, FUZZ_CC=clang"
 
 FORCE:
 
-# dependency files of our own objects (build/vm holds a kernel tree with its own *.d, which are not ours)
+# dependency files of our own objects (build/vm holds a kernel tree with its own *.d, which are not ours; the
+# sanitizer's copy of the tree and the fuzz build have their own)
 ifneq ($(CONFIGURED),)
--include $(shell find $(B) -path $(B)/vm -prune -o -type f -name '*.d' -print 2>/dev/null)
+-include $(shell find $(B) \( -path $(B)/vm -o -path $(B)/sanitize -o -path $(B)/fuzz \) -prune -o -type f -name '*.d' \
+  -print 2>/dev/null)
 endif

@@ -14,6 +14,10 @@ DEB_TEST  := libcmocka-dev libgsl-dev xvfb weston
 # `make vmcheck` (`make deps-vm`): qemu boots a kernel built from linux-source-6.1 (flex, bison, bc for kconfig,
 # libelf-dev for objtool, xz-utils to unpack) to test DRM, GPIO and evdev against real drivers.
 DEB_VM    := qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
+# `make fuzz` (`make deps-fuzz`): clang builds the libFuzzer targets of tests/fuzz; libFuzzer and clang's sanitizer
+# runtimes are in libclang-rt-14-dev (Debian 12 splits them from clang). Plain builds and `make sanitize` (gcc's own
+# ASan and UBSan) need neither.
+DEB_FUZZ  := clang libclang-rt-14-dev
 # Plots of `make sweep` and the tools' plot scripts (`make deps-plots`; the committed PNGs do not need it).
 DEB_PLOTS := gnuplot-nox
 
@@ -21,21 +25,26 @@ DEB_PLOTS := gnuplot-nox
 PC_BUILD := egl glesv2 libpng osmesa gbm libdrm libgpiod x11 wayland-client wayland-egl wayland-protocols
 PC_TEST  := cmocka gsl
 
-.PHONY: deps deps-test deps-vm deps-plots deps-all
+.PHONY: deps deps-test deps-vm deps-fuzz deps-plots deps-all
 deps:
 	@sh scripts/install-deps.sh $(DEB_BUILD)
 deps-test:
 	@sh scripts/install-deps.sh $(DEB_TEST)
 deps-vm:
 	@sh scripts/install-deps.sh $(DEB_VM)
+deps-fuzz:
+	@sh scripts/install-deps.sh $(DEB_FUZZ)
 deps-plots:
 	@sh scripts/install-deps.sh $(DEB_PLOTS)
-deps-all: deps deps-test deps-vm deps-plots
+deps-all: deps deps-test deps-vm deps-fuzz deps-plots
 
 # Run before ./configure: installs the build (or test) packages only when pkg-config misses one of their modules.
 # NO_DEPS=1 skips it (a machine without apt, or a packager's build root); configure then says what is missing.
 DEPS_ENSURE_BUILD = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_BUILD) 2>/dev/null && \
                     [ -n "$$(ls /usr/lib/*/dri/swrast_dri.so /usr/lib/dri/swrast_dri.so 2>/dev/null)" ] \
                     || sh scripts/install-deps.sh $(DEB_BUILD))
+DEPS_ENSURE_FUZZ  = $(if $(NO_DEPS),:,command -v $(FUZZ_CC) >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char *d, \
+                    long n) { return d && n < 0; }' | $(FUZZ_CC) -fsanitize=fuzzer -x c - -o /dev/null 2>/dev/null \
+                    || sh scripts/install-deps.sh $(DEB_FUZZ))
 DEPS_ENSURE_TEST  = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_TEST) 2>/dev/null && command -v Xvfb >/dev/null \
                     || sh scripts/install-deps.sh $(DEB_TEST))

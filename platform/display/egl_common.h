@@ -28,6 +28,9 @@ void *cu_egl_proc(const char *name);
 /* "EGL 1.5 (Mesa Project) config 0x2b: buf=32 r=8 g=8 b=8 a=0 depth=24 stencil=8 samples=0" */
 void cu_egl_describe(const cu_egl *e, char *buf, size_t len);
 void cu_egl_terminate(cu_egl *e);
+/* Call after eglInitialize: in sanitizer builds keeps Mesa's driver loaded to the end (egl_common.c says why);
+ * otherwise does nothing. */
+void cu_egl_keep_driver(void);
 const char *cu_egl_error(void);
 
 #endif

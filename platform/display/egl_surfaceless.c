@@ -65,6 +65,7 @@ static int egl_open(cu_display **out, const cu_display_opts *o, char *err, size_
         egl_close(d);
         return 1;
     }
+    cu_egl_keep_driver();
     if (!eglBindAPI(EGL_OPENGL_ES_API)) {
         snprintf(err, errlen, "egl: eglBindAPI(EGL_OPENGL_ES_API) failed (%s)", egl_err());
         egl_close(d);
