@@ -1,8 +1,9 @@
 #!/bin/sh
 # tests/vm/add-summary.sh TOTALS VM_TOTALS: adds the VM tests' "N passed, N failed, N skipped" (VM_TOTALS, written
 # by tests/vm/vmcheck.sh) into TOTALS (make check's build/test-output/summary.txt), so that the one totals line CI
-# reads counts both. A missing VM_TOTALS (vmcheck died before it wrote one) counts as one failure. A missing TOTALS is
-# left missing: .ci/run then reports make check's own failure.
+# reads counts both; .ci/run adds make sanitize's and make fuzz's totals the same way. A missing VM_TOTALS (vmcheck
+# died before it wrote one) counts as one failure. A missing TOTALS is left missing: .ci/run then reports make
+# check's own failure.
 [ -f "$1" ] || exit 0
 if [ -f "$2" ]; then vm=$(cat "$2"); else vm="0 passed, 1 failed, 0 skipped"; fi
 tot=$(cat "$1")
