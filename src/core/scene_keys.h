@@ -58,6 +58,13 @@ const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n);
  * The multiple-of rule is not checked here: the parser reports it once the whole file is read. */
 int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const char *at, cu_error *err);
 
+/* v as %g writes it, with more digits (up to 17) until it reads back as v, in buf: "179.0001", not "179". */
+const char *cu_number_text(double v, char buf[32]);
+
+/* The whole-scene ranges that tie keys together (the scene's size against its smallest radius, the noise scale
+ * against the cloud's size): 0, or 1 with a message starting with file. */
+int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err);
+
 /* Writes the default of every key of keys[0..n-1] that has one into base (a cu_scene or a cu_ellipsoid). */
 void cu_scene_keys_defaults(void *base, const cu_scene_key *keys, int n);
 #endif

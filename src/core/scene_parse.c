@@ -69,7 +69,7 @@ static int post_checks(cu_scene *s, const char *file, const file_state *fs, cu_e
     double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
     if (dx * dx + dy * dy + dz * dz < 1e-12)
         return cu_fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", file);
-    return 0;
+    return cu_scene_check_ranges(s, file, err);
 }
 
 /* Applies the scene's quality preset to every key it lists that the file (or an earlier --set) did not set itself:

@@ -267,7 +267,12 @@ static void frame_camera(const cu_renderer *r, const cu_frame *f, cu_camera *c)
     c->pos = cam;
     c->znear = znear;
     m4_to_float(vp, c->vp);
-    m4_to_float(m4_inverse(vp), c->inv_vp);
+    /* The camera-inside pass (cloud.frag, FULLSCREEN) unprojects clip z = 1, the far plane, in fp32: through vp
+     * its w is a difference of 1/znear and 1/zfar, which cancels to 0 (a NaN direction) once zfar / znear passes
+     * 1/eps ~ 1.7e7 (radii 1e6, znear 0.05). The far plane does not depend on znear, so the inverse is taken of a
+     * frustum with the same far plane and znear = zfar / 2: the same rays, no cancellation. */
+    mat4 far_vp = m4_mul(m4_perspective(fov, aspect, 0.5 * zfar, zfar), m4_look_dir(cam, dir, v3(0, 1, 0)));
+    m4_to_float(m4_inverse(far_vp), c->inv_vp);
     /* The sky only needs directions: the camera at the origin and fixed clip planes, so the sky does not depend on
      * where the clouds are (an empty scene is bit-for-bit the sky). */
     mat4 proj_dir = m4_perspective(fov, aspect, 1.0, 2.0);

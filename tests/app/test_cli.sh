@@ -29,7 +29,7 @@ t_expect "binary garbage" 1 "not a text file" -- $C render "$T/garbage.scene" -o
 t_expect "empty scene" 1 "$T/empty.scene:1:1: empty scene file" -- $C render "$T/empty.scene" -o "$T/x.png"
 t_expect "missing scene" 1 "nope.scene: cannot open" -- $C render nope.scene -o "$T/x.png"
 t_expect "bad --set key" 2 "unknown key 'cloud.colour'" -- $C render scenes/cumulus.scene -o "$T/x.png" --set cloud.colour=1
-t_expect "bad --set value" 2 "'radii' must be positive, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --set value" 2 "'radii' must be in [0.1, 100000] m, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
 t_expect "bad --size" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size 0x10
 t_expect "bad output type" 2 "must end in .png or .pfm" -- $C render scenes/cumulus.scene -o "$T/x.jpg"
 t_expect "unknown back end" 2 "unknown back end 'vulkan'" -- $C render scenes/cumulus.scene -o "$T/x.png" --backend vulkan

@@ -82,9 +82,9 @@ static const bad_case bad[] = {
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 200 120\n",
      "t.scene:8:9: 'radii' needs 3 numbers, got 2"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 -2 3\n",
-     "t.scene:8:9: 'radii' must be positive, got -2"},
+     "t.scene:8:9: 'radii' must be in [0.1, 100000] m, got -2"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 0 3\n",
-     "t.scene:8:9: 'radii' must be positive, got 0"},
+     "t.scene:8:9: 'radii' must be in [0.1, 100000] m, got 0"},
     {"[camera]\nposition = nan 0 0\n", "t.scene:2:12: 'position' is NaN"},
     {"[camera]\nfov = inf\n", "t.scene:2:7: 'fov' is out of range (inf)"},
     {"[camera]\nfov = 1e400\n", "t.scene:2:7: 'fov' is out of range (1e400)"},
@@ -154,7 +154,7 @@ static void test_bad_set(void **st)
     assert_int_not_equal(cu_scene_set(s, "camera.fov=nan", &e), 0);
     assert_string_equal(e.msg, "--set camera.fov: 'fov' is NaN");
     assert_int_not_equal(cu_scene_set(s, "ellipsoid.1.radii=1 1 -1", &e), 0);
-    assert_string_equal(e.msg, "--set ellipsoid.radii: 'radii' must be positive, got -1");
+    assert_string_equal(e.msg, "--set ellipsoid.radii: 'radii' must be in [0.1, 100000] m, got -1");
     /* a failed --set leaves the value unchanged */
     assert_true(s->ell[0].radii[2] == 3.0);
     cu_scene_free(s);

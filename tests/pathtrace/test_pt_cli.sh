@@ -45,7 +45,7 @@ t_expect "binary garbage" 1 "not a text file" -- $P "$T/garbage.scene" -o "$T/x.
 t_expect "empty scene" 1 "empty scene file" -- $P "$T/empty.scene" -o "$T/x.pfm"
 t_expect "missing scene" 1 "nope.scene: cannot open" -- $P nope.scene -o "$T/x.pfm"
 t_expect "bad --set key" 1 "unknown key 'cloud.colour'" -- $P $S -o "$T/x.pfm" --set cloud.colour=1
-t_expect "bad --set value" 1 "'radii' must be positive, got -5" -- $P $S -o "$T/x.pfm" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --set value" 1 "'radii' must be in [0.1, 100000] m, got -5" -- $P $S -o "$T/x.pfm" --set "ellipsoid.1.radii=1 -5 1"
 t_expect "unwritable output" 1 "/nonexistent/x.pfm" -- $P $S -o /nonexistent/x.pfm --size 2x2 --spp 1 --quiet
 t_expect "unwritable dump" 1 "cannot write density grid" -- $P $S --dump-density /nonexistent/d.raw --grid 2,2,2
 t_expect "no arguments" 2 "usage: cumulo-pt" -- $P

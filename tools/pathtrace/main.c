@@ -31,6 +31,8 @@ static const char usage[] =
     "  --size WxH               image size, 1..16384 each (default: the scene's [output] size)\n"
     "  --set section.key=value  override a scene key, as cumulo --set does (at most 64)\n"
     "  --max-depth N            scattering events per path before it is cut, 0..1000000000 (default 1000000)\n"
+    "  --max-steps N            tracking steps per path (collisions, null collisions, shadow rays) before it\n"
+    "                           is cut, 1..1000000000000 (default 100000); cut paths are counted and reported\n"
     "  --aa                     jitter inside each pixel (box filter) instead of the pixel centre\n"
     "  --mode M                 radiance (default) or transmittance, exp(-tau) along each camera ray\n"
     "  --peak-mis P             probability per scattering event of the forward-peak sun strategy, [0, 1]\n"
@@ -79,11 +81,11 @@ int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *out = NULL, *dump = NULL, *sets[MAX_SETS];
     int nsets = 0, quiet = 0, aa = 0, width = 0, height = 0, grid[3] = {128, 128, 128}, have_grid = 0;
-    unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0;
+    unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0, max_steps = PT_MAX_STEPS;
     pt_mode mode = PT_MODE_RADIANCE;
     double peak_mis = PT_GUIDE_DEFAULT;
     enum { O_SPP = 256, O_THREADS, O_SEED, O_SIZE, O_SET, O_MAX_DEPTH, O_MODE, O_PEAK_MIS, O_DUMP, O_GRID, O_AA,
-           O_VERSION };
+           O_VERSION, O_MAX_STEPS };
     static const struct option opts[] = {
         {"spp", required_argument, NULL, O_SPP},           {"threads", required_argument, NULL, O_THREADS},
         {"seed", required_argument, NULL, O_SEED},         {"size", required_argument, NULL, O_SIZE},
@@ -92,6 +94,7 @@ int main(int argc, char **argv)
         {"dump-density", required_argument, NULL, O_DUMP}, {"grid", required_argument, NULL, O_GRID},
         {"aa", no_argument, NULL, O_AA},                   {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},                  {"version", no_argument, NULL, O_VERSION},
+        {"max-steps", required_argument, NULL, O_MAX_STEPS},
         {NULL, 0, NULL, 0}};
     opterr = 0;
     for (int o; (o = getopt_long(argc, argv, ":o:qh", opts, NULL)) != -1;) {
@@ -126,6 +129,10 @@ int main(int argc, char **argv)
         case O_MAX_DEPTH:
             if (parse_u64(v, 0, 1000000000, &max_depth))
                 return bad("--max-depth expects a count from 0 to 1000000000, got '%s'", v);
+            break;
+        case O_MAX_STEPS:
+            if (parse_u64(v, 1, 1000000000000ull, &max_steps))
+                return bad("--max-steps expects a count from 1 to 1000000000000, got '%s'", v);
             break;
         case O_SIZE:
             if (sscanf(v, "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
@@ -211,6 +218,7 @@ int main(int argc, char **argv)
         return 1;
     }
     c->max_depth = (int)max_depth;
+    c->max_steps = max_steps;
     c->guide = peak_mis;
     int rc = 0;
     if (dump) {
@@ -255,6 +263,10 @@ int main(int argc, char **argv)
                    out, sp, s->width, s->height, spp, seed, threads, secs,
                    k.paths ? (double)k.scatters / k.paths : 0.0, k.paths ? (double)k.density_evals / k.paths : 0.0,
                    (unsigned long long)k.truncated, (unsigned long long)k.paths, max_depth);
+            if (k.step_capped) /* a cut path is biased low: say so even with -q */
+                fprintf(stderr, "cumulo-pt: warning: %llu of %llu paths cut at --max-steps %llu (the image is biased "
+                        "dark where they were)\n", (unsigned long long)k.step_capped, (unsigned long long)k.paths,
+                        max_steps);
             if (spp < 2)
                 fprintf(stderr, "cumulo-pt: warning: 1 sample per pixel gives no error estimate (%s is zero)\n", sp);
         }

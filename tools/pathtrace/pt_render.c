@@ -86,7 +86,7 @@ static void render_row(job *j, int y, pt_counters *k)
 static void *worker(void *arg)
 {
     job *j = arg;
-    pt_counters k = {0, 0, 0, 0};
+    pt_counters k = {0};
     for (;;) {
         pthread_mutex_lock(&j->lock);
         int y = j->next_row < j->o->height ? j->next_row++ : -1;
@@ -105,6 +105,7 @@ static void *worker(void *arg)
     j->total.scatters += k.scatters;
     j->total.truncated += k.truncated;
     j->total.density_evals += k.density_evals;
+    j->total.step_capped += k.step_capped;
     pthread_mutex_unlock(&j->lock);
     return NULL;
 }
