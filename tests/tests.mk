@@ -34,6 +34,8 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 $(foreach t,render extremes sunmap ms fallback,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
+# The extremes matrix of every key's range, through the GPU renderer and the path tracer.
+$(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh
@@ -76,8 +78,8 @@ CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 CHECK_TESTS += $(wildcard tests/build/test_*.sh)
 
 # The long versions (larger images, finer sweeps, thick slabs): `make stress`.
-stress: all $(B)/test_extremes $(B)/test_slab
-	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes tests/slab/test_slab_stress.sh
+stress: all $(B)/test_extremes $(B)/test_ranges $(B)/test_slab
+	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes $(B)/test_ranges tests/slab/test_slab_stress.sh
 
 # Rewrites the reference images from the current renderer (EGL); look at them before committing.
 refs: $(B)/test_render

@@ -187,15 +187,6 @@ const char *cu_number_text(double v, char buf[32])
     return buf;
 }
 
-/* How much larger than its smallest radius a scene may be: the GPU holds positions in fp32 (2^-24 relative), so a
- * point at distance L from where the chord is solved is off by 2^-24 L, which is 0.6% of r_min at L = 1e5 r_min. L is
- * the camera's distance from the cloud's centre (the ray start is moved to the cloud along the camera ray) and 4 R,
- * the longest sun-map ray (the sun plane sits at 2 R, R the cloud's bounding radius). */
-#define MAX_SCENE_TO_RADIUS 1e5
-/* Noise texels: a position p (cloud-local, |p| <= R) reads the 64^3 tile at 8 p noise_scale / 1000 tiles, i.e.
- * 0.512 |p| noise_scale texels; fp32 keeps 1/16 texel there up to 2^20 texels: R noise_scale <= 2^20 / 0.512 m. */
-#define MAX_NOISE_EXTENT 2.05e6
-
 int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
 {
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, rmin = 1e300;
@@ -217,17 +208,17 @@ int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
         dc += (s->cam_pos[a] - 0.5 * (lo[a] + hi[a])) * (s->cam_pos[a] - 0.5 * (lo[a] + hi[a]));
     dc = sqrt(dc);
     char b0[32], b1[32], b2[32];
-    if (s->n_ellipsoids && fmax(dc, 4 * R) > MAX_SCENE_TO_RADIUS * rmin)
+    if (s->n_ellipsoids && fmax(dc, 4 * R) > CU_MAX_SCENE_TO_RADIUS * rmin)
         return cu_fail(err,
                        "%s: the scene is too large for its smallest radius %s m: camera %s m from the cloud's centre, "
                        "cloud radius %s m; both must be at most %g radii (and the cloud's 4x) for single precision",
                        file, cu_number_text(rmin, b0), cu_number_text(dc, b1), cu_number_text(R, b2),
-                       MAX_SCENE_TO_RADIUS);
-    if (s->n_ellipsoids && s->noise && R * s->noise_scale > MAX_NOISE_EXTENT)
+                       CU_MAX_SCENE_TO_RADIUS);
+    if (s->n_ellipsoids && s->noise && R * s->noise_scale > CU_MAX_NOISE_EXTENT)
         return cu_fail(err,
                        "%s: [cloud] 'noise_scale' %s is too fine for a cloud of radius %s m: radius x noise_scale "
                        "must be at most %g m for single precision noise coordinates (or quality.noise = off)",
-                       file, cu_number_text(s->noise_scale, b0), cu_number_text(R, b1), MAX_NOISE_EXTENT);
+                       file, cu_number_text(s->noise_scale, b0), cu_number_text(R, b1), CU_MAX_NOISE_EXTENT);
     return 0;
 }
 
@@ -271,7 +262,8 @@ int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const
         if (isinf(v) || errno == ERANGE) {
             if (isinf(v) || fabs(v) > 1.0)
                 return cu_fail(err, "%s: '%s' is out of range (%.*s)", at, k->name, clip40((int)(end - p)), p);
-            v = 0.0; /* underflow to zero is harmless */
+            /* underflow: keep strtod's subnormal or zero, so the smallest positive double stays positive and the
+             * range check judges the value written, not a 0 it never said */
         }
         char b0[32];
         if (k->type == CU_KEY_INTEGER && v != floor(v))

@@ -27,16 +27,24 @@ static inline double free_path(pt_rng *r, double m) { return -log(1.0 - pt_rng_u
 int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err)
 {
     memset(c, 0, sizeof *c);
-    c->scene = *s;
     if (cu_noise_create(&c->noise, PT_NOISE_SEED))
         return cu_fail(err, "%s", "path tracer: cannot create the noise texture (out of memory)");
-    if (cu_phase_table_build(&c->table, &c->scene, data_dir, err)) {
+    if (pt_ctx_set_scene(c, s, data_dir, err)) {
         cu_noise_destroy(&c->noise);
         return 1;
     }
+    return 0;
+}
+
+int pt_ctx_set_scene(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err)
+{
+    pt_phase_free(&c->phase);
+    cu_phase_table_free(&c->table);
+    c->scene = *s;
+    if (cu_phase_table_build(&c->table, &c->scene, data_dir, err))
+        return 1;
     if (pt_phase_init(&c->phase, &c->table, err)) {
         cu_phase_table_free(&c->table);
-        cu_noise_destroy(&c->noise);
         return 1;
     }
     cu_cloud_build(&c->cloud, &c->scene, &c->noise);

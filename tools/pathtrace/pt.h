@@ -97,6 +97,9 @@ typedef struct pt_counters {
 
 /* Builds everything from a scene (data_dir holds mie_cloud.tbl). Returns 0, or 1 with a message. */
 int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err);
+/* Rebuilds c (from pt_ctx_init) for scene s, keeping its noise texture (the costly part, the same for every scene);
+ * the integrator's settings return to their defaults. Returns 0, or 1 with a message (c then needs pt_ctx_free). */
+int pt_ctx_set_scene(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err);
 void pt_ctx_free(pt_ctx *c);
 /* Test hook: replace the cloud by a slab of optical thickness tau (thickness 1000 m, top at local y = 0). */
 void pt_ctx_use_slab(pt_ctx *c, double tau);
