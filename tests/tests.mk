@@ -72,6 +72,7 @@ $(eval $(call test_program,test_slab,tests/slab/test_slab.c $(B)/obj/tools/slab/
   $(B)/obj/tools/slab/fitlib.o,$(GSL_CFLAGS),$(GSL_LIBS)))
 CHECK_TESTS += tests/slab/test_slab_cli.sh
 $(eval $(call test_program,test_pathtrace,tests/pathtrace/test_pt.c $(PT_OBJS) $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_pt_limits,tests/pathtrace/test_pt_limits.c $(PT_OBJS) $(CORE),,$(LIB_LIBS)))
 CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 
 # build: configuration, install and an embedding program built against the installed copy (tests/build/).

@@ -210,8 +210,9 @@ int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
     char b0[32], b1[32], b2[32];
     if (s->n_ellipsoids && fmax(dc, 4 * R) > CU_MAX_SCENE_TO_RADIUS * rmin)
         return cu_fail(err,
-                       "%s: the scene is too large for its smallest radius %s m: camera %s m from the cloud's centre, "
-                       "cloud radius %s m; both must be at most %g radii (and the cloud's 4x) for single precision",
+                       "%s: the scene is too large for its smallest radius, %s m: the camera is %s m from the cloud's "
+                       "centre, the cloud's radius is %s m; the distance and 4x the radius must each be at most %g "
+                       "smallest radii (single-precision positions)",
                        file, cu_number_text(rmin, b0), cu_number_text(dc, b1), cu_number_text(R, b2),
                        CU_MAX_SCENE_TO_RADIUS);
     if (s->n_ellipsoids && s->noise && R * s->noise_scale > CU_MAX_NOISE_EXTENT)

@@ -108,6 +108,21 @@ static const bad_case bad[] = {
      "t.scene:6:1: [ellipsoid] #1 has no 'center'"},
     {"[camera]\n[camera]\n", "t.scene:2:1: section [camera] appears twice"},
     {"[sun]\nelevation = 91\n", "t.scene:2:13: 'elevation' must be in [-90, 90] degrees, got 91"},
+    /* values shown with the digits that make them fail (%g printed "got 179" and "got 5") */
+    {"[camera]\nfov = 179.0001\n", "t.scene:2:7: 'fov' must be in [0.1, 179] degrees, got 179.0001"},
+    {"[quality]\nsegments = 5.0000001\n", "t.scene:2:12: 'segments' must be a whole number, got 5.0000001"},
+    {"[output]\nexposure = 0\n", "t.scene:2:12: 'exposure' must be positive, got 0"},
+    {"[cloud]\nnoise_scale = 1e-400\n", "t.scene:2:15: 'noise_scale' must be positive, got 0"},
+    /* whole-scene ranges (scene_keys.h): the scene's size against its smallest radius, noise against size */
+    {"[camera]\nposition = 0 0 -20000\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\n"
+     "radii = 0.1 1 1\n",
+     "t.scene: the scene is too large for its smallest radius, 0.1 m: the camera is 20000 m from the cloud's centre, "
+     "the cloud's radius is 1 m; the distance and 4x the radius must each be at most 100000 smallest radii "
+     "(single-precision positions)"},
+    {"[camera]\nposition = 0 0 -2000\nlook_at = 0 0 0\n[sun]\n[cloud]\nnoise_scale = 10000\n[ellipsoid]\n"
+     "center = 0 0 0\nradii = 300 300 300\n",
+     "t.scene: [cloud] 'noise_scale' 10000 is too fine for a cloud of radius 300 m: radius x noise_scale must be at "
+     "most 2.05e+06 m for single precision noise coordinates (or quality.noise = off)"},
 };
 
 static void test_bad_inputs(void **st)

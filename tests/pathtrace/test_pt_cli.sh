@@ -70,6 +70,14 @@ t_expect "grid alone" 2 "--grid only applies" -- $P $S -o "$T/x.pfm" --grid 2,2,
 t_expect "bad peak-mis" 2 "--peak-mis expects" -- $P $S -o "$T/x.pfm" --peak-mis 1.5
 t_expect "not a PFM" 2 "must end in .pfm" -- $P $S -o "$T/x.png"
 t_expect "missing -o value" 2 "-o needs a value" -- $P $S -o
-t_help_version cumulo-pt $P -o --spp --threads --seed --size --set --max-depth --aa --mode --peak-mis --dump-density \
-  --grid --quiet --help --version
+t_expect "max steps zero" 2 "--max-steps expects" -- $P $S -o "$T/x.pfm" --max-steps 0
+# The legal extreme of optical thickness (radii 1e5 m, k_e 6e7 m^-1) at 8x8, 1 spp: every path is cut at the default
+# step bound and the warning counts them; a minute's timeout stands for "never loops".
+if timeout 60 $P $S -o "$T/ext.pfm" --size 8x8 --spp 1 --threads 2 -q --set ellipsoid.1.radii=1e5,1e5,1e5 \
+     --set cloud.density=1e7 --set cloud.droplet_radius=1000 2>"$T/ext.err" >/dev/null &&
+   grep -q "warning: 64 of 64 paths cut at --max-steps 100000" "$T/ext.err"; then
+  t_ok "extreme optical thickness: finishes, cut paths reported"
+else t_fail "extreme optical thickness: finishes, cut paths reported" "$(cat "$T/ext.err")"; fi
+t_help_version cumulo-pt $P -o --spp --threads --seed --size --set --max-depth --max-steps --aa --mode --peak-mis \
+  --dump-density --grid --quiet --help --version
 t_summary
