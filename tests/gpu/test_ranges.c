@@ -342,22 +342,22 @@ static void test_findings(void **st)
     free(px);
 }
 
-/* make stress: every key's bound (and just inside) combined with every other key's bound, the rest at the profile
- * of the first key's opposite extreme. */
+/* make stress: every key's bound combined with every other key's bound, the rest at the profile of the first key's
+ * opposite extreme (CUMULO_RANGES_KEY: the first key only). */
 static void test_pairs(void **st)
 {
     (void)st;
     if (!stress)
         skip();
+    const char *only = getenv("CUMULO_RANGES_KEY");
     renders = rejected = 0;
     for (int i = 0; i < nkeys; i++)
-        for (int a = 0; a < 4; a++)
+        for (int hi = 0; hi < 2 && (!only || strcmp(only, keys[i]->name) == 0); hi++)
             for (int j = 0; j < nkeys; j++)
                 for (int b = 0; b < 2 && j != i; b++) {
                     ranges_case c;
-                    int hi = a & 1;
                     profile(&c, !hi);
-                    c.v[i] = a & 2 ? inside(keys[i], hi) : bound(keys[i], hi);
+                    c.v[i] = bound(keys[i], hi);
                     c.v[j] = bound(keys[j], b);
                     snprintf(c.label, sizeof c.label, "[%s] %s = %.17g, [%s] %s = %.17g", keys[i]->section,
                              keys[i]->name, c.v[i], keys[j]->section, keys[j]->name, c.v[j]);
