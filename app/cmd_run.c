@@ -328,7 +328,7 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
         char err[512];
         cu_error e;
         s->be->frame(s->disp, &fbo, &w, &h);
-        cu_frame f = { fbo, w, h, 0 };
+        cu_frame f = {.fbo = fbo, .width = w, .height = h};
         if (cu_render(s->r, &f, &e)) {
             fprintf(stderr, "cumulo: %s\n", e.msg);
             rc = 1;

@@ -80,7 +80,7 @@ int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_di
 int cli_session_render(cli_session *s)
 {
     cu_error e;
-    cu_frame f = {s->fbo, s->width, s->height, s->linear};
+    cu_frame f = {.fbo = s->fbo, .width = s->width, .height = s->height, .linear = s->linear};
     if (cu_render(s->r, &f, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;
