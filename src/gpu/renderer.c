@@ -77,8 +77,11 @@ int cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err)
      * (OSMesa) has it in core. We probe the real answer rather than trusting the strings alone. */
     int ext_f = !r->is_gles || cu_gl_has_extension(gl, "GL_EXT_color_buffer_float");
     int ext_h = ext_f || cu_gl_has_extension(gl, "GL_EXT_color_buffer_half_float");
+    cu_glstate st;
+    cu_glstate_enter(gl, &st);
     ctx->float_rt = ext_f && probe_renderable(gl, GL_RGBA32F);
     ctx->half_rt = ext_h && probe_renderable(gl, GL_RGBA16F);
+    cu_glstate_leave(gl, &st);
     cu_gpu_log(ctx, CU_LOG_INFO, "GL: %s | %s | %s", r->vendor, r->renderer_name, r->version);
     cu_gpu_log(ctx, CU_LOG_INFO, "HDR target: %s", ctx->half_rt ? "RGBA16F (EXT_color_buffer_half_float/float)"
                                            : "RGBA8 fallback (no float colour targets: highlights clip)");
@@ -165,7 +168,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
     return 0;
 }
 
-int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
+static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
     delete_scene_objects(r);
@@ -209,6 +212,15 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     if (e != GL_NO_ERROR)
         return cu_fail(err, "GL error 0x%x while uploading the scene", e);
     return 0;
+}
+
+int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
+{
+    cu_glstate st;
+    cu_glstate_enter(&r->gl, &st);
+    int rc = set_scene(r, s, err);
+    cu_glstate_leave(&r->gl, &st);
+    return rc;
 }
 
 int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err)
