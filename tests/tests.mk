@@ -36,6 +36,7 @@ $(foreach t,render extremes sunmap ms fallback,\
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context).
 $(eval $(call test_program,test_embed,tests/gpu/test_embed.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))
+CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh
