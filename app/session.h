@@ -67,6 +67,8 @@ int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_di
  * failure, 0 on success. cli_session_close is safe after a failed open. */
 int cli_session_open(cli_session *s, const cli_opts *o);
 int cli_session_render(cli_session *s);
+/* The same with the host-style camera matrices of cu_frame (both NULL: the scene's [camera]). */
+int cli_session_render_view(cli_session *s, const float *view, const float *projection);
 /* Reads the frame back (top row first): RGBA8 for tone-mapped, RGB float for linear. */
 int cli_session_read_rgba8(cli_session *s, uint8_t *out);
 int cli_session_read_rgbf(cli_session *s, float *out);

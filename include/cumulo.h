@@ -52,6 +52,8 @@ int  cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t l
 /* "section.key=value", as given to --set; errors name "--set" and the field. */
 int  cu_scene_set(cu_scene *s, const char *assignment, cu_error *err);
 void cu_scene_output_size(const cu_scene *s, int *width, int *height);
+/* The scene's [camera]: position and look_at in world metres, vertical field of view in degrees. */
+void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], double *fov_deg);
 /* The scene's [camera] as a host would pass it in cu_frame: view (world -> eye) and a perspective projection for
  * the aspect ratio width / height with the given clip planes (column-major). Passing these gives the same image
  * as passing NULL. Fails for a non-positive or non-finite aspect or planes (0 < znear < zfar). */

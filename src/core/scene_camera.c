@@ -19,3 +19,12 @@ int cu_scene_camera_matrices(const cu_scene *s, double aspect, double znear, dou
     m4_to_float(m4_perspective(s->cam_fov * CU_PI / 180.0, aspect, znear, zfar), projection);
     return 0;
 }
+
+void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], double *fov_deg)
+{
+    for (int i = 0; i < 3; i++) {
+        position[i] = s->cam_pos[i];
+        look_at[i] = s->cam_look[i];
+    }
+    *fov_deg = s->cam_fov;
+}
