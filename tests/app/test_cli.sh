@@ -20,6 +20,13 @@ case "$out" in
   *"GL_RENDERER:"*"[cumulus.scene] size=64x48:quality.segments=2: FPS: "*" FrameTime: "*" ms p95: "*) t_ok "bench output" ;;
   *) t_fail "bench output" "$out" ;;
 esac
+out=$($C bench scenes/cumulus.scene --frames 3 --warmup 0 --size 32x24 --camera both --orbit-step 30 2>&1)
+case "$out" in
+  *"camera=orbit:orbit-step=30: FPS: "*"camera=orbit:orbit-step=30:unmoved: FPS: "*"moving/unmoved median frame time: "*)
+    t_ok "bench --camera both output" ;;
+  *) t_fail "bench --camera both output" "$out" ;;
+esac
+t_expect "bench bad camera" 2 "--camera expects static, orbit or both" -- $C bench scenes/cumulus.scene --camera spin
 
 printf '[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 nan 1\n' > "$T/bad.scene"
 t_expect "bad scene value" 1 "$T/bad.scene:8:9: 'radii' is NaN" -- $C render "$T/bad.scene" -o "$T/x.png"
@@ -45,7 +52,7 @@ done
 for opt in --output --size --backend --set --data-dir --verbose; do
   case "$($C render --help)" in *"$opt"*) t_ok "render --help describes $opt" ;; *) t_fail "render --help describes $opt" "missing" ;; esac
 done
-for opt in --frames --warmup --csv --sun-every-frame --sun-step; do
+for opt in --frames --warmup --csv --sun-every-frame --sun-step --camera --orbit-step; do
   case "$($C bench --help)" in *"$opt"*) t_ok "bench --help describes $opt" ;; *) t_fail "bench --help describes $opt" "missing" ;; esac
 done
 v=$($C --version); rc=$?
