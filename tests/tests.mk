@@ -35,7 +35,9 @@ $(foreach t,render extremes sunmap ms fallback,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context).
-$(eval $(call test_program,test_embed,tests/gpu/test_embed.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))
+$(foreach t,embed embed_state,\
+  $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
+    $(HEADLESS_LIBS) $(GLES_LIBS))))
 CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
