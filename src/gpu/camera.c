@@ -91,7 +91,24 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
         n = fmax(0.05, 0.5 * (u_c - r_eye));
         f = u_hi;
     }
-    c->visible = f > n;
+    /* Frustum culling: the bounds' sphere wholly outside a side plane of the view (Gribb and Hartmann's planes
+     * w +- x >= 0, w +- y >= 0 in clip space, taken to eye space through the projection's rows) cannot change a
+     * pixel, so the cloud pass is skipped. */
+    vec3 ce = v3(local.m[12], local.m[13], local.m[14]);
+    int outside = 0;
+    for (int k = 0; k < 4; k++) {
+        int row = k / 2;
+        double sg = k % 2 ? -1.0 : 1.0;
+        vec3 nrm = v3(pm[3] + sg * pm[row], pm[7] + sg * pm[4 + row], pm[11] + sg * pm[8 + row]);
+        double d = pm[15] + sg * pm[12 + row];
+        if (v3_dot(nrm, ce) + d < -r_eye * 1.05 * v3_len(nrm))
+            outside = 1;
+    }
+    c->visible = f > n && !outside;
+    /* How far from the eye the near plane reaches: znear times the distance of its corners, for the hull test. */
+    double k = ortho ? 1.0 : -pm[11]; /* w = k u */
+    double tx = (fabs(pm[8]) + k) / fabs(pm[0]), ty = (fabs(pm[9]) + k) / fabs(pm[5]);
+    c->near_reach = ortho ? 0.0 : sqrt(1.0 + tx * tx + ty * ty);
     if (!c->visible)
         f = n + 1.0;
     c->znear = n;

@@ -40,7 +40,8 @@ typedef struct cu_camera {
     int ortho;               /* 1: parallel rays along view_dir, each from its pixel on the near plane */
     vec3 view_dir;           /* the view's forward direction */
     double znear;            /* of vp (cumulo's own depth planes around the clouds) */
-    int visible;             /* 0: the clouds' bounds lie wholly outside the depth range the view sees */
+    double near_reach;       /* perspective: the near plane's farthest point from the eye, in units of znear */
+    int visible;             /* 0: the clouds' bounds lie wholly outside the view (its frustum and depths) */
     int near_cuts;           /* 1: the host's near plane (orthographic) cuts the clouds' bounds */
     float vp[16], inv_vp[16];/* the host's x, y, w rows with cumulo's depth row */
     float inv_rot[16];       /* clip space to directions, the camera at the origin: the sky's */

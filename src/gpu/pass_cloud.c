@@ -35,17 +35,23 @@ void cu_pass_cloud_destroy(cu_pass_cloud *p, const cu_gl *gl)
     p->host_sampler = 0;
 }
 
-/* Is the camera inside (or within the near plane of) some hull? Then hull rasterisation would miss pixels. */
-static int camera_inside_hull(const cu_gpu_scene *ctx, vec3 cam, double znear)
+/* Could the near plane cut some hull? Then hull rasterisation would miss pixels. A point of the near plane lies
+ * within d = znear * near_reach of the eye; the points within d of an ellipsoid with radii r lie inside the one
+ * with radii r + d, so inside s <= 1 + d / r_min in its normalised coordinates, and inside the sphere of radius
+ * r_max + d: the plane cuts the hull only if the eye passes both tests. */
+int cu_pass_cloud_fullscreen(const cu_gpu_scene *ctx)
 {
+    const cu_camera *cam = &ctx->camera;
+    if (cam->ortho)
+        return cam->near_cuts;
     const cu_cloud *cl = ctx->cloud;
-    double k = cu_hull_scale(ctx->scene->hull_tessellation);
+    double k = cu_hull_scale(ctx->scene->hull_tessellation), d = cam->znear * cam->near_reach;
     for (int i = 0; i < cl->n; i++) {
         vec3 rr = v3_scale(cl->r[i], k);
-        double rmin = fmin(rr.x, fmin(rr.y, rr.z));
-        vec3 q = v3_sub(cam, cl->c[i]);
+        double rmin = fmin(rr.x, fmin(rr.y, rr.z)), rmax = fmax(rr.x, fmax(rr.y, rr.z));
+        vec3 q = v3_sub(cam->pos, cl->c[i]);
         double s = v3_len(v3(q.x / rr.x, q.y / rr.y, q.z / rr.z));
-        if (s <= 1.0 + 4.0 * znear / rmin)
+        if (s <= 1.0 + d / rmin && v3_len(q) <= rmax + d)
             return 1;
     }
     return 0;
@@ -67,9 +73,7 @@ void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx)
     }
     gl->Enable(GL_BLEND);
     gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied over the sky */
-    /* Hulls cut by the near plane would miss pixels: the camera inside one, or an orthographic near plane. */
-    int fullscreen = cam->ortho ? cam->near_cuts : camera_inside_hull(ctx, cam->pos, cam->znear);
-    if (fullscreen) {
+    if (cu_pass_cloud_fullscreen(ctx)) {
         gl->Disable(GL_DEPTH_TEST);
         cu_shading_uniforms(ctx, p->prog_fs, &p->fs, cam->pos, cam->vp, cam->inv_vp);
         cu_shading_frame(ctx, &p->fs);

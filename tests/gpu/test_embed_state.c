@@ -11,6 +11,7 @@
 #include <string.h>
 #include "density.h"
 #include "host_util.h"
+#include "renderer.h"
 #include "scene_camera.h"
 
 #define UNITS 11 /* the texture units cumulo's contract covers */
@@ -263,11 +264,58 @@ static void test_projection_extremes(void **st)
     f.projection = NULL;
     assert_int_not_equal(cu_render(host_ctx.r, &f, &e), 0);
 }
+/* What a frame costs follows what is on screen: the scene's view rasterises the hulls (the near plane cuts none),
+ * the camera in the cloud takes the full-screen path, and a view turned away from the clouds skips the cloud pass and
+ * is the sky alone, bit for bit the same as the same view of a cloud of zero density. */
+static void test_culling(void **st)
+{
+    (void)st;
+    static float px[N * 4], sky[N * 4];
+    float view[16], proj[16];
+    cu_error e;
+    const cu_gpu_scene *g = &host_ctx.r->ctx;
+    host_matrices(view, proj, 0.5, 5000.0);
+    host_render((cu_frame){.fbo = fbo32, .width = W, .height = H, .linear = 1, .view = view, .projection = proj});
+    assert_true(g->camera.visible);
+    assert_false(cu_pass_cloud_fullscreen(g));
+
+    cu_scene *s;
+    assert_int_equal(cu_scene_parse(&s, "turned.scene", HOST_SCENE_TEXT, strlen(HOST_SCENE_TEXT), &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.position=0 250 -100", &e), 0);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, s, &e), 0);
+    host_render((cu_frame){.fbo = fbo32, .width = W, .height = H, .linear = 1});
+    assert_true(g->camera.visible);
+    assert_true(cu_pass_cloud_fullscreen(g));
+
+    /* Looking 73 degrees to the side of the cloud (fov 50 x 64 degrees): the cloud is in front of the eye (the depth
+     * range does not cull it), outside the frustum's side plane (this test is what culls it). */
+    assert_int_equal(cu_scene_set(s, "camera.position=0 250 -900", &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.look_at=1000 250 -600", &e), 0);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, s, &e), 0);
+    host_render((cu_frame){.fbo = fbo32, .width = W, .height = H, .linear = 1});
+    host_read(fbo32, 1, px);
+    assert_false(g->camera.visible);
+    assert_int_equal(cu_scene_set(s, "cloud.density=0", &e), 0);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, s, &e), 0);
+    host_render((cu_frame){.fbo = fbo32, .width = W, .height = H, .linear = 1});
+    host_read(fbo32, 1, sky);
+    assert_memory_equal(px, sky, sizeof px);
+    /* Looking at the cloud again, it is culled no longer. */
+    assert_int_equal(cu_scene_set(s, "camera.look_at=0 250 0", &e), 0);
+    assert_int_equal(cu_scene_set(s, "cloud.density=40", &e), 0);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, s, &e), 0);
+    host_render((cu_frame){.fbo = fbo32, .width = W, .height = H, .linear = 1});
+    assert_true(g->camera.visible);
+    cu_scene_free(s);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, host_scene, &e), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_state_contract),
         cmocka_unit_test(test_projection_extremes),
+        cmocka_unit_test(test_culling),
     };
     return cmocka_run_group_tests(tests, host_setup, host_teardown);
 }
