@@ -67,6 +67,14 @@ uniform float u_ms_g;          // anisotropy of the octave phase functions
 uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
 out vec4 o_color;
 
+// A fragment with no cloud on its ray. Full screen it is discarded; a hull fragment instead writes transparent black
+// (a no-op under the premultiplied blend): a shader that can discard makes llvmpipe and tilers run it before the
+// depth and stencil tests, for every hull layer of the pixel, instead of once.
+#if FULLSCREEN
+#define NO_CLOUD discard
+#else
+#define NO_CLOUD { o_color = vec4(0.0); return; }
+#endif
 
 vec3 phase_table(float cos_theta, int row)
 {
@@ -211,13 +219,13 @@ void main()
             if (q.w != 0.0)
                 t_end = dot(q.xyz / q.w - ro, dir);
             if (t_end <= 0.0)
-                discard;
+                NO_CLOUD;
         }
     }
 #endif
     cast_ray(ro, dir);
     if (n_hits == 0)
-        discard;
+        NO_CLOUD;
 
     // Per-pixel constants: the scattering angle is the same along the ray (parallel sunlight).
     float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
