@@ -39,6 +39,8 @@ int cu_textfile_next(cu_textfile *f, cu_error *err)
             return -cu_fail(err, "%s:%d: line longer than %d characters", f->path, f->line, CU_TEXT_MAX_LINE);
         f->ntok = 0;
         char *p = f->buf;
+        if (f->line == 1 && len >= 3 && !memcmp(p, "\xef\xbb\xbf", 3))
+            p += 3; /* a UTF-8 byte-order mark is not text */
         for (;;) {
             while (blank(*p))
                 p++;
