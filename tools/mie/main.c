@@ -3,6 +3,7 @@
 #include "mietable.h"
 #include "version.h"
 #include "water.h"
+#include "../tool_cli.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -279,7 +280,7 @@ int main(int argc, char **argv)
             return 1;
         }
         int wrc = mt_write_table(out, &r, ang.theta_deg, cmd, &p);
-        if (out != stdout && fclose(out) != 0)
+        if (tool_close_output(out))
             wrc = -1;
         if (wrc != 0)
             fprintf(stderr, "cumulo-mie: writing '%s' failed\n", table);
