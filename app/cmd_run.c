@@ -84,15 +84,13 @@ static uint64_t now_ns(void)
 
 static void input_log(void *user, const char *msg) { (void)user; fprintf(stderr, "%s\n", msg); }
 
-/* A number in lo..hi (whole: an integer); 0, or 1 after printing what the option expects. */
-static int parse_number(const char *opt, const char *v, double lo, double hi, int whole, double *out)
+/* A number in lo..hi; 0, or 1 after printing what the option expects. */
+static int parse_number(const char *opt, const char *v, double lo, double hi, double *out)
 {
     char *end;
-    errno = 0;
-    double x = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
-    if (end == v || *end || (whole && errno) || !(x >= lo && x <= hi)) {
-        fprintf(stderr, whole ? "cumulo: %s expects a whole number in %.0f..%.0f, got '%s'\n"
-                              : "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
+    double x = strtod(v, &end);
+    if (end == v || *end || !(x >= lo && x <= hi)) {
+        fprintf(stderr, "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
         return 1;
     }
     *out = x;
@@ -118,21 +116,21 @@ static const struct option long_opts[] = {
 static int take_option(run_args *a, int c, const char *name, char *v)
 {
     char err[512] = "";
-    double x;
     switch (c) {
     case 'v': a->o.verbose = 1; return 0;
     case OPT_FULLSCREEN: a->dopt.fullscreen = 1; return 0;
     case OPT_NO_STDIN: a->no_stdin = 1; return 0;
     case OPT_MODE: a->dopt.mode = v; return 0;
     case OPT_DEVICE: a->dopt.device = v; return 0;
-    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, 0, &a->sun.accel);
+    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, &a->sun.accel);
     case OPT_FRAMES:
-        if (parse_number(name, v, 1, 2000000000L, 1, &x))
+        if (cli_parse_counts(v, 0, 1, 1, 2000000000L, &a->frames_max)) {
+            fprintf(stderr, "cumulo: %s expects a whole number in 1..2000000000, got '%s'\n", name, v);
             return 1;
-        a->frames_max = (long)x;
+        }
         return 0;
     case OPT_STEP:
-        if (parse_number(name, v, 0.001, 90.0, 0, &a->sun.step_az))
+        if (parse_number(name, v, 0.001, 90.0, &a->sun.step_az))
             return 1;
         a->sun.step_el = a->sun.step_az / 2.0;
         return 0;

@@ -57,6 +57,7 @@ for opt in --platform --frames --fullscreen --mode --device --input --no-stdin -
 done
 t_ok "run --help describes every option"
 t_expect bad_frames 2 "--frames expects a whole number" -- $C run $S --platform headless --frames 0
+t_expect frames_blank 2 "--frames expects a whole number" -- $C run $S --platform headless --frames " 3"
 
 # DRM on a machine without /dev/dri: non-zero and a message that says what to do.
 if [ -e /dev/dri ]; then
