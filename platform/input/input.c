@@ -35,6 +35,25 @@ static int parse_int(const char *v, size_t n, long lo, long hi, long *out)
     return 0;
 }
 
+void cu_input_escape(char *dst, size_t n, const char *src, const char *keep)
+{
+    if (!n)
+        return;
+    size_t o = 0;
+    for (const unsigned char *p = (const unsigned char *)src; *p; p++) {
+        int plain = (*p >= 32 && *p != 127) || strchr(keep, *p);
+        size_t need = plain ? 1 : 4;
+        if (o + need >= n)
+            break;
+        if (plain)
+            dst[o] = (char)*p;
+        else
+            snprintf(dst + o, 5, "\\x%02x", *p);
+        o += need;
+    }
+    dst[o] = 0;
+}
+
 int cu_input_line_offset(const char *s)
 {
     char *end;

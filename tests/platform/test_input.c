@@ -135,6 +135,20 @@ static void test_stdin_commands(void **state)
             fail_msg("'%s' was accepted", bad[i]);
         assert_non_null(strstr(err, "stdin:"));
     }
+    /* what a line echoes back is escaped: an ESC or BEL from stdin must not reach the terminal that shows the log */
+    static const char *const hostile[][2] = {
+        { "dance\x1b[2J", "'dance\\x1b[2J'" }, { "sun \x1b]0;x\x07 10", "'\\x1b]0;x\\x07'" },
+        { "el\x1b", "'el\\x1b'" }, { "quit \x7f", "'quit'" },
+    };
+    for (size_t i = 0; i < sizeof hostile / sizeof hostile[0]; i++) {
+        err[0] = '\0';
+        assert_int_not_equal(cu_stdin_parse(hostile[i][0], &a, err, sizeof err), 0);
+        for (const char *p = err; *p; p++)
+            if ((unsigned char)*p < 32 || *p == 127)
+                fail_msg("case %zu: raw byte 0x%02x in '%s'", i, (unsigned char)*p, err);
+        if (!strstr(err, hostile[i][1]))
+            fail_msg("case %zu: '%s' lacks %s", i, err, hostile[i][1]);
+    }
 }
 
 typedef struct lines { char got[8][64]; int n; } lines;
