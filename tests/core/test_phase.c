@@ -90,6 +90,9 @@ static const bad_table bad[] = {
     {HEAD "angles 2\n0 1 1e39 1\n180 1 1 1\n", "t.tbl:8: field 'P_g': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
     {"sigma_ext_um2 1 1e300 1\n", "t.tbl:1: field 'sigma_ext_um2': '1e300' does not fit in a float (|x| <= 3.403e+38)"},
     {"# comment\n\n  \t\nchop_deg 1e39\n", "t.tbl:4: field 'chop_deg': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
+    /* a control byte is never part of a table, and quoting it back would drive the terminal (ESC [2J clears it) */
+    {"channels 3\n\x1b[2Jcolour 1 2 3\n", "t.tbl:2: not a text file (byte 0x1b)"},
+    {"# \x07 in a comment\n", "t.tbl:1: not a text file (byte 0x07)"},
 };
 
 static void test_hostile_tables(void **st)
