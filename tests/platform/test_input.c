@@ -69,6 +69,10 @@ static void test_parse_bad(void **state)
     expect_bad("gpio:a=17,b=27,steps=3", "'steps'");
     expect_bad("gpio:a=17,b=27,steps=x", "'steps'");
     expect_bad("gpio:a=17,b=27,debounce=-5", "'debounce'");
+    /* numbers are digits only: strtol would take a sign or leading blanks, and wrap nothing past its range */
+    expect_bad("gpio:a=17,b=27,steps=+4", "'steps'");
+    expect_bad("gpio:a=17,b=27,debounce= 5", "'debounce'");
+    expect_bad("gpio:a=17,b=27,debounce=99999999999999999999", "'debounce'");
     expect_bad("gpio:a=17,b=27,chip=aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa"
                "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa", "longer than");
     expect_bad("evdev:", "give a device path");
@@ -78,6 +82,9 @@ static void test_parse_bad(void **state)
     expect_bad("gpio", "unknown input kind");
     assert_int_equal(cu_input_line_offset("-1"), -1);
     assert_int_equal(cu_input_line_offset("17x"), -1);
+    assert_int_equal(cu_input_line_offset("\t17"), -1);
+    assert_int_equal(cu_input_line_offset("18446744073709551633"), -1);
+    assert_int_equal(cu_input_line_offset("65535"), 65535);
     assert_int_equal(cu_input_line_offset(""), -1);
 }
 
