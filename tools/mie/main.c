@@ -200,13 +200,10 @@ int main(int argc, char **argv)
                 return bad("--band", "HI - LO must be a multiple of STEP", v);
             have_band = 1;
             break;
-        case O_THREADS: {
-            double th;
-            if (num(v, 1.0, 8.0, &th) || th != floor(th))
+        case O_THREADS:
+            if (tool_parse_int(v, 1, 8, &p.threads))
                 return bad("--threads", "expected an integer 1-8", v);
-            p.threads = (int)th;
             break;
-        }
         }
     }
     if (optind < argc)

@@ -166,7 +166,9 @@ int main(int argc, char **argv)
         case O_REPORT: report = v; break;
         case O_MU: c.nmu = list("--mu", v, c.mu, CU_MAXMU); break;
         case O_PHI: c.phi_deg = num("--phi", v); break;
-        case O_DEPTHS: nd = (int)num("--depths", v); break;
+        case O_DEPTHS:
+            if (tool_parse_int(v, 1, CU_MAXGRID, &nd)) die("--depths must be in 1..%d, got '%s'", CU_MAXGRID, v);
+            break;
         case O_THETAV: c.nv = list("--thetav", v, c.thv_deg, CU_MAXGRID); break;
         case O_PHIV: c.nphi = list("--phiv", v, c.phv_deg, CU_MAXGRID); break;
         case O_OUT: out = v; break;
