@@ -2,6 +2,7 @@
  * median and 95th percentile frame time (wall clock per frame including glFinish); optional CSV. */
 #include "commands.h"
 #include "session.h"
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,9 +67,8 @@ static double median(double *t, int n)
 
 static int parse_count(const char *opt, const char *v, int min, int *out)
 {
-    char *end;
-    long n = strtol(v, &end, 10);
-    if (end == v || *end || n < min || n > 1000000) {
+    long n;
+    if (cli_parse_counts(v, 0, 1, min, 1000000, &n)) {
         fprintf(stderr, "cumulo bench: %s expects a count, got '%s'\n", opt, v);
         return -1;
     }
@@ -240,7 +240,7 @@ int cmd_bench(int argc, char **argv)
             ok = fclose(f) == 0 && ok;
         }
         if (!ok) {
-            fprintf(stderr, "cumulo bench: cannot write %s\n", csv);
+            fprintf(stderr, "cumulo bench: cannot write %s: %s\n", csv, strerror(errno));
             rc = 1;
         }
     }

@@ -69,6 +69,13 @@ t_expect "PNG onto a full disk" 1 "No space left on device" -- $C render scenes/
 t_expect "PFM onto a full disk" 1 "write failed" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/full.pfm"
 t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
 t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
+# Counts are digits only and never wrap: strtol took " 5" and "+5"; --size must not wrap through an int either.
+t_expect "bench frames with a blank" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames " 5"
+t_expect "bench warmup with a sign" 2 "--warmup expects a count" -- $C bench scenes/cumulus.scene --warmup +1
+t_expect "bench frames overflow" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames 18446744073709551617
+t_expect "size with a sign" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size +8x8
+ln -sf /dev/full "$T/full.csv"
+t_expect "bench csv onto a full disk" 1 "cannot write $T/full.csv: No space left on device" -- $C bench scenes/cumulus.scene --frames 1 --warmup 0 --size 8x8 --csv "$T/full.csv"
 t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
 # The presets compiled into the engine (src/core/presets.c) are the ones the sweep chose (docs/sweep_presets.txt): every
 # key=value of each preset's --set line must appear in that preset's entry, except cloud.phase (a preset never changes
