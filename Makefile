@@ -80,6 +80,7 @@ include tools/keys/keys.mk
 include tests/tests.mk
 include tests/vm/vm.mk
 include tools/sweep/sweep.mk
+include examples/examples.mk
 include mk/install.mk
 
 all: $(ALL_BINS)

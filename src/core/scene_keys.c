@@ -28,6 +28,7 @@ static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in
 #define BOOL(sec, key, def, doc, field) {sec, key, CU_KEY_BOOL, 1, bool_names, def, 0, 0, 0, 0, "", doc, field, 0}
 
 const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
+    /* size <= 16384: GLES limits (GL_MAX_RENDERBUFFER_SIZE, checked at render time); the maths is per pixel */
     INT("output", "size", 2, "640 480", 1, 16384, 0, "pixels", "image width and height", S(width)),
     /* exposure <= 1e6: the tone curve squares exposure x radiance (tonemap.frag: x (2.51 x + 0.03)), which overflows
      * fp32 beyond 1.1e19; radiance is at most the sun disk's, irradiance / 6.8e-5 sr <= 1.5e10, so x <= 1.5e16. */
@@ -43,6 +44,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     /* fov >= 0.1 deg: a pixel spans fov / height >= 0.1 deg / 16384 = 1.1e-7 rad, two fp32 ulps of a unit direction;
      * narrower, neighbouring pixels share one fp32 ray. <= 179: tan(fov / 2) <= 115, a finite frustum. */
     NUM("camera", "fov", 1, "50", 0.1, 179, 0, "degrees", "vertical field of view", S(cam_fov)),
+    /* angles: only their sines and cosines enter, finite for any value; turbidity: Preetham's fit covers 1.7 .. 10 */
     NUM("sun", "elevation", 1, "0", -90, 90, 0, "degrees", "angle of the sun above the horizon", S(sun_elevation)),
     NUM("sun", "azimuth", 1, "0", -360, 720, 0, "degrees", "direction of the sun, from north toward east",
         S(sun_azimuth)),
@@ -54,6 +56,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     ENUM("sky", "model", sky_names, "preetham", "preetham, or constant: uniform radiance from every direction",
          S(sky_model)),
     NUM("sky", "color", 3, "0 0 0", 0, 1e6, 0, "", "RGB radiance of the constant sky", S(sky_color)),
+    /* albedo in [0, 1]: a reflectance; above 1 the ground would amplify light */
     NUM("sky", "ground_albedo", 1, "0.2", 0, 1, 0, "", "Lambertian ground seen below the horizon", S(ground_albedo)),
     /* density <= 1e7 cm^-3 and r_e <= 1000 um: k_e <= 1e13 x 2 pi 1e-6 = 6.3e7 m^-1, so optical depths through a
      * 2e5 m chord reach 1.3e13, finite in fp32; the path tracer's steps per path are bounded (tools/pathtrace). */
@@ -67,9 +70,14 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "1: one 64^3 noise tile spans 1000 m (the 8x layer repeats every 125 m)", S(noise_scale)),
     ENUM("cloud", "phase", phase_names, "mie", "phase function: mie (data/mie_cloud.tbl), hg or cornette-shanks",
          S(phase)),
+    /* |g| <= 0.99: the HG and Cornette-Shanks denominators (1 + g^2 - 2 g mu)^1.5 stay >= 1e-6, the forward peak
+     * (1 + g) / (4 pi (1 - g)^2) <= 1.6e3 sr^-1, far from fp32 overflow */
     NUM("cloud", "g", 1, "0.86", -0.99, 0.99, 0, "", "asymmetry of hg and cornette-shanks", S(phase_g)),
     ENUM("cloud", "profile", profile_names, "tapered",
          "density profile: tapered noise, or kol (Kol eq. 3.1 as printed)", S(profile)),
+    /* [quality], [light] and [ms] counts: loop counts and array sizes the shaders are compiled with; no count enters
+     * a formula as a magnitude. segment_ratio <= 10: knot_t in density.glsl is written as r^(j - n) so that r^n
+     * never overflows (10^192 would over 3 merged chords of 64 segments). */
     INT("quality", "segments", 1, "5", 1, 64, 0, "", "march segments per ellipsoid crossed", S(segments)),
     NUM("quality", "segment_ratio", 1, "1.6", 1, 10, 0, "", "ratio of consecutive segment lengths (1: uniform)",
         S(segment_ratio)),
@@ -102,6 +110,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          "multiple scattering: slab (Bouthors' model, Kol's fixed blur), collector (Bouthors' iterative collector "
          "search), octaves (Wrenninge) or none",
          S(ms_mode)),
+    /* Wrenninge's a, b, c in [0, 1]: the octaves' factors a^o, b^o, c^o shrink, so their sums stay <= octaves */
     INT("ms", "octaves", 1, "4", 1, 8, 0, "", "mode = octaves: Wrenninge's octave count", S(ms_octaves)),
     NUM("ms", "a", 1, "0.5", 0, 1, 0, "", "mode = octaves: extinction factor per octave", S(ms_a)),
     NUM("ms", "b", 1, "0.5", 0, 1, 0, "", "mode = octaves: scattering factor per octave", S(ms_b)),
@@ -110,6 +119,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          "sky and ground light; with slab or collector and a Preetham sky, sky and ground told apart by the slab "
          "model",
          S(sky_light)),
+    /* blur in (0, 1e6] m: log2(blur / texel) is the slab maps' LOD, finite for blur > 0 and clamped to the mips */
     NUM("ms", "blur", 1, "200", 0, 1e6, 1, "m",
         "mode = slab: width over which the slab maps are averaged around a point (Kol's fixed LOD)", S(ms_blur_m)),
     INT("ms", "iterations", 1, "10", 1, 32, 0, "", "mode = collector: most search steps (Bouthors eqs. 3.59-3.63)",

@@ -235,6 +235,54 @@ static void test_missing_file(void **st)
     assert_string_equal(e.msg, "no/such.scene: cannot open: No such file or directory");
 }
 
+/* Every whole-scene check of the file runs on --set too, and a --set it rejects leaves the scene as it was. */
+static void test_set_cross_field(void **st)
+{
+    (void)st;
+    cu_scene *s, *before;
+    cu_error e;
+    assert_int_equal(parse(MIN_SCENE, &s, &e), 0);
+    assert_int_equal(parse(MIN_SCENE, &before, &e), 0);
+    assert_int_not_equal(cu_scene_set(s, "camera.look_at=0 0 -10", &e), 0);
+    assert_string_equal(e.msg, "--set camera.look_at: [camera] 'look_at' equals 'position'; the view direction is "
+                               "undefined");
+    assert_int_not_equal(cu_scene_set(s, "camera.position=0 0 0", &e), 0);
+    assert_string_equal(e.msg, "--set camera.position: [camera] 'look_at' equals 'position'; the view direction is "
+                               "undefined");
+    assert_int_not_equal(cu_scene_set(s, "light.sun_samples=6", &e), 0);
+    assert_string_equal(e.msg, "--set light.sun_samples: [light] 'sun_samples' must be a multiple of 4, got 6");
+    assert_int_not_equal(cu_scene_set(s, "light.osm_slices=9", &e), 0);
+    assert_memory_equal(s, before, sizeof *s);
+    /* presets break no check, and moving one end of the view at a time is fine while they differ */
+    assert_int_equal(cu_scene_set(s, "quality.preset=low", &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.look_at=0 0 -20", &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.position=0 0 -20.5", &e), 0);
+    cu_scene_free(s);
+    cu_scene_free(before);
+}
+
+/* A UTF-8 byte-order mark is skipped; control bytes given to --set come back escaped, never raw. */
+static void test_bom_and_control_bytes(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse("\xef\xbb\xbf" MIN_SCENE, &s, &e), 0);
+    assert_true(s->ell[0].radii[2] == 3.0);
+    /* only at the very start: elsewhere it is a syntax error like any other text */
+    cu_scene *t = NULL;
+    assert_int_not_equal(parse(MIN_SCENE "\xef\xbb\xbf[sky]\n", &t, &e), 0);
+    assert_null(t);
+    assert_int_not_equal(cu_scene_set(s, "quality.\x1b[31mx=1", &e), 0);
+    assert_null(strchr(e.msg, '\x1b'));
+    assert_non_null(strstr(e.msg, "\\x1b[31mx"));
+    assert_int_not_equal(cu_scene_set(s, "cloud.phase=\x1b]0;pwned\x07", &e), 0);
+    assert_null(strchr(e.msg, '\x1b'));
+    assert_null(strchr(e.msg, '\x07'));
+    assert_non_null(strstr(e.msg, "\\x1b]0;pwned\\x07"));
+    cu_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -242,6 +290,7 @@ int main(void)
         cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_presets),
+        cmocka_unit_test(test_set_cross_field),       cmocka_unit_test(test_bom_and_control_bytes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -70,6 +70,14 @@ t_expect "grid alone" 2 "--grid only applies" -- $P $S -o "$T/x.pfm" --grid 2,2,
 t_expect "bad peak-mis" 2 "--peak-mis expects" -- $P $S -o "$T/x.pfm" --peak-mis 1.5
 t_expect "not a PFM" 2 "must end in .pfm" -- $P $S -o "$T/x.png"
 t_expect "missing -o value" 2 "-o needs a value" -- $P $S -o
+# Integers that overflow an int are errors, not wrapped (sscanf's %d made 4294967360x48 into 64x48).
+t_expect "size overflow" 2 "--size expects" -- $P $S -o "$T/x.pfm" --size 4294967360x48
+t_expect "size sign" 2 "--size expects" -- $P $S -o "$T/x.pfm" --size 8x-8
+t_expect "grid overflow" 2 "--grid expects" -- $P $S --dump-density "$T/x.raw" --grid 4294967297,1,1
+# A full disk is an error for every file written (/dev/full fails every write with ENOSPC).
+ln -sf /dev/full "$T/full.pfm"; ln -sf /dev/full "$T/dfull.raw.txt"
+t_expect "PFM onto a full disk" 1 "write failed" -- $P $S -o "$T/full.pfm" --size 2x2 --spp 1 --quiet
+t_expect "density header onto a full disk" 1 "dfull.raw.txt: write failed" -- $P $S --dump-density "$T/dfull.raw" --grid 2,2,2
 t_expect "max steps zero" 2 "--max-steps expects" -- $P $S -o "$T/x.pfm" --max-steps 0
 # The legal extreme of optical thickness (radii 1e5 m, k_e 6e7 m^-1) at 8x8, 1 spp: every path is cut at the default
 # step bound and the warning counts them; a minute's timeout stands for "never loops".

@@ -3,6 +3,7 @@
 #include "image.h"
 #include "pt.h"
 #include "version.h"
+#include "../tool_cli.h"
 #include <errno.h>
 #include <getopt.h>
 #include <stdarg.h>
@@ -47,15 +48,7 @@ static const char usage[] =
 /* Whole-string unsigned integer in [lo, hi]; 0 on success. */
 static int parse_u64(const char *s, unsigned long long lo, unsigned long long hi, unsigned long long *out)
 {
-    if (!s || !*s || *s == '-' || *s == '+' || *s == ' ')
-        return 1;
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || *end || v < lo || v > hi)
-        return 1;
-    *out = v;
-    return 0;
+    return tool_parse_uints(s, 0, 1, lo, hi, out);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -99,7 +92,8 @@ int main(int argc, char **argv)
     opterr = 0;
     for (int o; (o = getopt_long(argc, argv, ":o:qh", opts, NULL)) != -1;) {
         const char *v = optarg;
-        char tail, *end;
+        char *end;
+        unsigned long long wh[2], g3[3];
         switch (o) {
         case 'h':
             fputs(usage, stdout);
@@ -135,9 +129,10 @@ int main(int argc, char **argv)
                 return bad("--max-steps expects a count from 1 to 1000000000000, got '%s'", v);
             break;
         case O_SIZE:
-            if (sscanf(v, "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
-                height > 16384)
+            if (tool_parse_uints(v, 'x', 2, 1, 16384, wh))
                 return bad("--size expects WxH with 1..16384, got '%s'", v);
+            width = (int)wh[0];
+            height = (int)wh[1];
             break;
         case O_SET:
             if (nsets == MAX_SETS)
@@ -162,10 +157,10 @@ int main(int argc, char **argv)
             dump = v;
             break;
         case O_GRID:
-            if (sscanf(v, "%d,%d,%d%c", &grid[0], &grid[1], &grid[2], &tail) != 3 || grid[0] < 1 || grid[1] < 1 ||
-                grid[2] < 1 || grid[0] > 4096 || grid[1] > 4096 || grid[2] > 4096 ||
-                (double)grid[0] * grid[1] * grid[2] > 1073741824.0)
+            if (tool_parse_uints(v, ',', 3, 1, 4096, g3) || g3[0] * g3[1] * g3[2] > 1073741824ull)
                 return bad("--grid expects NX,NY,NZ with 1..4096 each and at most 2^30 voxels, got '%s'", v);
+            for (int i = 0; i < 3; i++)
+                grid[i] = (int)g3[i];
             have_grid = 1;
             break;
         case 'q':
