@@ -83,6 +83,7 @@ include tests/tests.mk
 include tests/fuzz/fuzz.mk
 include tests/vm/vm.mk
 include tools/sweep/sweep.mk
+include examples/examples.mk
 include mk/install.mk
 
 all: $(ALL_BINS)

@@ -2,6 +2,8 @@
  * median and 95th percentile frame time (wall clock per frame including glFinish); optional CSV. */
 #include "commands.h"
 #include "session.h"
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,13 +30,45 @@ static const char bench_help[] =
     "  --warmup N             frames rendered first and not measured (default 3)\n"
     "  --csv FILE             append one row to FILE (header written when the file is new)\n"
     "  --sun-every-frame      move the sun 0.01 deg of azimuth each frame (measures the sun-dependent passes)\n"
-    "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n" CLI_COMMON_HELP;
+    "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n"
+    "  --camera MODE          static (the scene's [camera], default); orbit: a new pose every frame, passed as\n"
+    "                         view and projection matrices, circling the vertical through look_at; both: every\n"
+    "                         orbit pose twice, just after the move and again unmoved, and the ratio of the two\n"
+    "                         medians (what a moving camera costs, measured in one run)\n"
+    "  --orbit-step DEG       degrees of orbit per frame (default 1), in (0, 360]\n" CLI_COMMON_HELP;
+
+enum { CAM_STATIC, CAM_ORBIT, CAM_BOTH };
+
+/* The scene's camera turned by deg about the vertical through its look_at, as host matrices. */
+static int orbit_pose(cu_scene *sc, double deg, double aspect, float view[16], float proj[16])
+{
+    double p[3], l[3], fov;
+    cu_scene_camera(sc, p, l, &fov);
+    double a = deg * 3.14159265358979323846 / 180.0, dx = p[0] - l[0], dz = p[2] - l[2];
+    char set[160];
+    snprintf(set, sizeof set, "camera.position=%.17g %.17g %.17g", l[0] + dx * cos(a) - dz * sin(a), p[1],
+             l[2] + dx * sin(a) + dz * cos(a));
+    cu_error e;
+    /* moved for the matrices only, then put back: every pose turns from the scene's own camera */
+    if (cu_scene_set(sc, set, &e) ||
+        cu_scene_camera_matrices(sc, aspect, 1.0, 1e5, view, proj, &e)) {
+        fprintf(stderr, "cumulo bench: orbit: %s\n", e.msg);
+        return 1;
+    }
+    snprintf(set, sizeof set, "camera.position=%.17g %.17g %.17g", p[0], p[1], p[2]);
+    return cu_scene_set(sc, set, &e) != 0;
+}
+
+static double median(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof *t, cmp_double);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
 
 static int parse_count(const char *opt, const char *v, int min, int *out)
 {
-    char *end;
-    long n = strtol(v, &end, 10);
-    if (end == v || *end || n < min || n > 1000000) {
+    long n;
+    if (cli_parse_counts(v, 0, 1, min, 1000000, &n)) {
         fprintf(stderr, "cumulo bench: %s expects a count, got '%s'\n", opt, v);
         return -1;
     }
@@ -42,7 +76,7 @@ static int parse_count(const char *opt, const char *v, int min, int *out)
     return 0;
 }
 
-enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY };
+enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY, OPT_CAMERA, OPT_ORBIT_STEP };
 
 int cmd_bench(int argc, char **argv)
 {
@@ -53,10 +87,13 @@ int cmd_bench(int argc, char **argv)
         {"csv", required_argument, NULL, OPT_CSV},
         {"sun-step", required_argument, NULL, OPT_SUN_STEP},
         {"sun-every-frame", no_argument, NULL, OPT_SUN_EVERY},
+        {"camera", required_argument, NULL, OPT_CAMERA},
+        {"orbit-step", required_argument, NULL, OPT_ORBIT_STEP},
         {NULL, 0, NULL, 0},
     };
     cli_opts o = {0};
-    int frames = 30, warmup = 3, sun_every_frame = 0;
+    int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC;
+    double orbit_step = 1.0;
     double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
     const char *csv = NULL;
     int c;
@@ -88,6 +125,21 @@ int cmd_bench(int argc, char **argv)
             sun_every_frame = 1;
             break;
         case OPT_SUN_EVERY: sun_every_frame = 1; break; /* measure the sun pass too, as when a knob turns */
+        case OPT_CAMERA:
+            camera = !strcmp(optarg, "static") ? CAM_STATIC : !strcmp(optarg, "orbit") ? CAM_ORBIT
+                     : !strcmp(optarg, "both") ? CAM_BOTH : -1;
+            if (camera < 0) {
+                fprintf(stderr, "cumulo bench: --camera expects static, orbit or both, got '%s'\n", optarg);
+                return 2;
+            }
+            break;
+        case OPT_ORBIT_STEP:
+            orbit_step = strtod(optarg, &end);
+            if (end == optarg || *end || !(orbit_step > 0) || orbit_step > 360) {
+                fprintf(stderr, "cumulo bench: --orbit-step expects degrees in (0, 360], got '%s'\n", optarg);
+                return 2;
+            }
+            break;
         case 'h': fputs(bench_help, stdout); return 0;
         case CLI_OPT_VERSION: cli_print_version(stdout, "cumulo"); return 0;
         case ':': fprintf(stderr, "cumulo bench: %s needs a value\n", argv[optind - 1]); return 2;
@@ -125,41 +177,57 @@ int cmd_bench(int argc, char **argv)
     printf("    LP_NUM_THREADS=%s\n", lp ? lp : "(unset)");
     printf("    Timing:        wall clock per frame incl. glFinish (no GPU timer query on this path)\n");
     printf("=======================================================\n");
-    double *t = malloc(sizeof(double) * (size_t)frames);
+    double *t = malloc(sizeof(double) * 2 * (size_t)frames), *t_still = t + frames;
     if (!t) {
         cli_session_close(&s);
         return 1;
     }
     double el, az;
     cu_renderer_get_sun(s.r, &el, &az);
+    float view[16], proj[16];
     for (int i = 0; i < warmup + frames; i++) {
         if (sun_every_frame) {
             cu_error e;
             cu_renderer_set_sun(s.r, el, az + sun_step * i, &e);
         }
-        double t0 = now_ms();
-        if (cli_session_render(&s)) {
+        int moving = camera != CAM_STATIC;
+        if (moving && orbit_pose(s.scene, orbit_step * i, (double)s.width / s.height, view, proj))
+            rc = 1;
+        for (int pass = 0; pass < (camera == CAM_BOTH ? 2 : 1) && !rc; pass++) {
+            double t0 = now_ms();
+            if (cli_session_render_view(&s, moving ? view : NULL, moving ? proj : NULL))
+                rc = 1;
+            if (i >= warmup)
+                (pass ? t_still : t)[i - warmup] = now_ms() - t0;
+        }
+        if (rc) {
             free(t);
             cli_session_close(&s);
             return 1;
         }
-        if (i >= warmup)
-            t[i - warmup] = now_ms() - t0;
     }
-    qsort(t, (size_t)frames, sizeof *t, cmp_double);
-    double med = frames % 2 ? t[frames / 2] : 0.5 * (t[frames / 2 - 1] + t[frames / 2]);
     int i95 = (int)(0.95 * (frames - 1) + 0.5);
-    double p95 = t[i95];
+    double med = median(t, frames), p95 = t[i95]; /* median() sorts */
+    double still_med = camera == CAM_BOTH ? median(t_still, frames) : 0;
+    double still_p95 = camera == CAM_BOTH ? t_still[i95] : 0;
     char opts[1024];
     int n = snprintf(opts, sizeof opts, "size=%dx%d", s.width, s.height);
     for (int i = 0; i < o.nsets && n < (int)sizeof opts - 2; i++)
         n += snprintf(opts + n, sizeof opts - (size_t)n, ":%s", o.sets[i]);
     if (sun_every_frame && n < (int)sizeof opts - 40)
-        snprintf(opts + n, sizeof opts - (size_t)n, sun_step == 0.01 ? ":sun-every-frame" : ":sun-step=%g", sun_step);
+        n += snprintf(opts + n, sizeof opts - (size_t)n, sun_step == 0.01 ? ":sun-every-frame" : ":sun-step=%g",
+                      sun_step);
+    if (camera != CAM_STATIC && n < (int)sizeof opts - 40)
+        snprintf(opts + n, sizeof opts - (size_t)n, ":camera=orbit:orbit-step=%g", orbit_step);
     const char *base = strrchr(o.scene_path, '/');
     base = base ? base + 1 : o.scene_path;
     printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts, 1000.0 / med, med, p95,
            frames);
+    if (camera == CAM_BOTH) {
+        printf("[%s] %s:unmoved: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts,
+               1000.0 / still_med, still_med, still_p95, frames);
+        printf("moving/unmoved median frame time: %.3f (the same poses, interleaved)\n", med / still_med);
+    }
     if (csv) {
         FILE *f = fopen(csv, "a");
         int ok = f != NULL;
@@ -172,7 +240,7 @@ int cmd_bench(int argc, char **argv)
             ok = fclose(f) == 0 && ok;
         }
         if (!ok) {
-            fprintf(stderr, "cumulo bench: cannot write %s\n", csv);
+            fprintf(stderr, "cumulo bench: cannot write %s: %s\n", csv, strerror(errno));
             rc = 1;
         }
     }

@@ -28,6 +28,7 @@ typedef struct run_args {
     cu_input_set inputs;
     int no_stdin;
     long frames_max;
+    long wait_display;              /* seconds to retry opening the display (--wait-display) */
     const char *el_range, *az_range;
     cu_sun_ctl sun;                 /* the knob settings; the sun itself comes from the scene */
 } run_args;
@@ -59,6 +60,8 @@ static void usage(FILE *f)
         "  --fullscreen        windowed back ends: cover the screen\n"
         "  --mode WxH[@Hz]     drm: the display mode (default: the connector's preferred one)\n"
         "  --device PATH       drm: /dev/dri/cardN or a /dev/dri/by-path name (default: probe)\n"
+        "  --wait-display S    retry opening the display for up to S seconds, 0..3600 (boot: the KMS driver can\n"
+        "                      come late; default 0)\n"
         "  --no-stdin          do not read commands from standard input (kiosks, systemd)\n"
         "  --knob AXIS         what the knob turns first: azimuth (default) or elevation; the button toggles\n"
         "  --step DEG          degrees per detent, 0.001..90 (default 1; elevation moves half of it)\n"
@@ -84,15 +87,13 @@ static uint64_t now_ns(void)
 
 static void input_log(void *user, const char *msg) { (void)user; fprintf(stderr, "%s\n", msg); }
 
-/* A number in lo..hi (whole: an integer); 0, or 1 after printing what the option expects. */
-static int parse_number(const char *opt, const char *v, double lo, double hi, int whole, double *out)
+/* A number in lo..hi; 0, or 1 after printing what the option expects. */
+static int parse_number(const char *opt, const char *v, double lo, double hi, double *out)
 {
     char *end;
-    errno = 0;
-    double x = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
-    if (end == v || *end || (whole && errno) || !(x >= lo && x <= hi)) {
-        fprintf(stderr, whole ? "cumulo: %s expects a whole number in %.0f..%.0f, got '%s'\n"
-                              : "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
+    double x = strtod(v, &end);
+    if (end == v || *end || !(x >= lo && x <= hi)) {
+        fprintf(stderr, "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
         return 1;
     }
     *out = x;
@@ -101,7 +102,7 @@ static int parse_number(const char *opt, const char *v, double lo, double hi, in
 
 /* Above app/session.h's CLI_OPT_* ids, which the common options keep. */
 enum { OPT_FULLSCREEN = 0x200, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
-       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION };
+       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION, OPT_WAIT_DISPLAY };
 
 #define ARG(name, id) { name, required_argument, NULL, id }
 #define FLAG(name, id) { name, no_argument, NULL, id }
@@ -110,7 +111,7 @@ static const struct option long_opts[] = {
     ARG("size", CLI_OPT_SIZE), ARG("backend", CLI_OPT_BACKEND), ARG("platform", CLI_OPT_BACKEND), ARG("set", CLI_OPT_SET),
     ARG("frames", OPT_FRAMES), ARG("mode", OPT_MODE), ARG("device", OPT_DEVICE), ARG("input", OPT_INPUT),
     ARG("knob", OPT_KNOB), ARG("step", OPT_STEP), ARG("accel", OPT_ACCEL), ARG("sun-elevation-range", OPT_EL_RANGE),
-    ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("data-dir", CLI_OPT_DATA_DIR), FLAG("version", OPT_VERSION),
+    ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("wait-display", OPT_WAIT_DISPLAY), ARG("data-dir", CLI_OPT_DATA_DIR), FLAG("version", OPT_VERSION),
     { NULL, 0, NULL, 0 },
 };
 
@@ -118,21 +119,27 @@ static const struct option long_opts[] = {
 static int take_option(run_args *a, int c, const char *name, char *v)
 {
     char err[512] = "";
-    double x;
     switch (c) {
     case 'v': a->o.verbose = 1; return 0;
     case OPT_FULLSCREEN: a->dopt.fullscreen = 1; return 0;
     case OPT_NO_STDIN: a->no_stdin = 1; return 0;
     case OPT_MODE: a->dopt.mode = v; return 0;
     case OPT_DEVICE: a->dopt.device = v; return 0;
-    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, 0, &a->sun.accel);
+    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, &a->sun.accel);
     case OPT_FRAMES:
-        if (parse_number(name, v, 1, 2000000000L, 1, &x))
+        if (cli_parse_counts(v, 0, 1, 1, 2000000000L, &a->frames_max)) {
+            fprintf(stderr, "cumulo: %s expects a whole number in 1..2000000000, got '%s'\n", name, v);
             return 1;
-        a->frames_max = (long)x;
+        }
+        return 0;
+    case OPT_WAIT_DISPLAY:
+        if (cli_parse_counts(v, 0, 1, 0, 3600, &a->wait_display)) {
+            fprintf(stderr, "cumulo: %s expects whole seconds in 0..3600, got '%s'\n", name, v);
+            return 1;
+        }
         return 0;
     case OPT_STEP:
-        if (parse_number(name, v, 0.001, 90.0, 0, &a->sun.step_az))
+        if (parse_number(name, v, 0.001, 90.0, &a->sun.step_az))
             return 1;
         a->sun.step_el = a->sun.step_az / 2.0;
         return 0;
@@ -216,6 +223,32 @@ static int parse_args(run_args *a, int argc, char **argv)
     return -1;
 }
 
+/* Display and renderer, retried for up to --wait-display seconds: at boot the KMS driver (vc4 on a Pi) can probe after
+ * the kiosk starts, and waiting here for the one device it needs beats systemd-udev-settle waiting for all of them. */
+static int attach_display(run_session *s, const run_args *a)
+{
+    char err[600];
+    uint64_t end = now_ns() + (uint64_t)a->wait_display * 1000000000u;
+    for (int tries = 0;; tries++) {
+        if (!cli_session_attach(s, s->be, &a->dopt, cli_data_dir(&a->o), a->o.verbose, err, sizeof err))
+            return 0;
+        if (s->r)
+            cu_renderer_destroy(s->r);
+        if (s->disp)
+            s->be->close(s->disp);
+        s->r = NULL;
+        s->disp = NULL;
+        if (quit_signal || now_ns() >= end) {
+            fprintf(stderr, "cumulo: %s\n", err);
+            return 1;
+        }
+        if (!tries)
+            fprintf(stderr, "cumulo: %s; retrying for up to %ld s\n", err, a->wait_display);
+        struct timespec pause = { 0, 250000000 };
+        nanosleep(&pause, NULL);
+    }
+}
+
 /* Scene, display, renderer; 0, or the exit status after printing why not (2: a bad --set). */
 static int open_session(run_session *s, run_args *a)
 {
@@ -234,11 +267,8 @@ static int open_session(run_session *s, run_args *a)
         a->dopt.width = a->o.width;
         a->dopt.height = a->o.height;
     }
-    char err[600];
-    if (cli_session_attach(s, s->be, &a->dopt, cli_data_dir(&a->o), a->o.verbose, err, sizeof err)) {
-        fprintf(stderr, "cumulo: %s\n", err);
+    if (attach_display(s, a))
         return 1;
-    }
     if (cu_renderer_set_scene(s->r, s->scene, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;
@@ -303,6 +333,16 @@ static void print_header(const run_session *s, const run_args *a, const cu_sun_c
     fflush(stdout);
 }
 
+/* A missing or vanished input is a warning, never the end: a kiosk unit (Restart=always) that exited here would
+ * restart into the same missing device forever and show no sky at all. */
+static void warn_inputs_gone(const cu_input_set *in, const char *what)
+{
+    int open, ended;
+    cu_input_set_left(in, &open, &ended);
+    fprintf(stderr, "cumulo: warning: %s (see above); the sky keeps running %s\n", what,
+            open ? "with the inputs left" : "with no input (the sun stays where it is)");
+}
+
 static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
 {
     /* Headless without a frame count has no vsync: wait for input up to a 60 Hz frame instead of spinning. */
@@ -310,16 +350,16 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
     uint64_t t_start = now_ns();
     long frames = 0;
     int rc = 0, any_open, any_ended;
+    int steered = cu_input_set_left(&a->inputs, &any_open, &any_ended) > 0; /* a requested input is there */
     while (!quit_signal && (!a->frames_max || frames < a->frames_max)) {
         cu_action acts[MAX_ACTIONS];
         const char *source[MAX_ACTIONS];
         int n = cu_input_set_poll(&a->inputs, idle_headless ? 16 : 0, acts, source, MAX_ACTIONS);
         if (apply_actions(acts, source, n, sun, s->r, frames))
             break;
-        if (!cu_input_set_left(&a->inputs, &any_open, &any_ended) && a->inputs.nrequired) {
-            fprintf(stderr, "cumulo: no requested input is left (see above); exiting\n");
-            rc = 1;
-            break;
+        if (!cu_input_set_left(&a->inputs, &any_open, &any_ended) && steered) {
+            warn_inputs_gone(&a->inputs, "no requested input is left");
+            steered = 0;
         }
         if (idle_headless && !any_open && any_ended)
             break; /* the command stream ended and there is no frame count: nothing can change any more */
@@ -328,7 +368,7 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
         char err[512];
         cu_error e;
         s->be->frame(s->disp, &fbo, &w, &h);
-        cu_frame f = { fbo, w, h, 0 };
+        cu_frame f = {.fbo = fbo, .width = w, .height = h};
         if (cu_render(s->r, &f, &e)) {
             fprintf(stderr, "cumulo: %s\n", e.msg);
             rc = 1;
@@ -372,18 +412,17 @@ int cmd_run(int argc, char **argv)
 
     rc = open_session(&s, &a);
     if (rc == 0) {
-        rc = 1;
         /* Inputs after the display: on a kiosk the screen matters more, and evdev grabs only on a bare console. */
         cu_input_opts io = { .grab = !strcmp(s.be->name, "drm"), .log = input_log };
         if (cu_input_set_open(&a.inputs, &io) == 0 && a.inputs.nrequired) {
-            fprintf(stderr, "cumulo: none of the %d requested inputs could be opened (see above)\n",
-                    a.inputs.nrequired);
-        } else {
-            cu_sun_ctl sun;
-            init_sun(&sun, &a, s.r);
-            print_header(&s, &a, &sun);
-            rc = run_loop(&s, &a, &sun);
+            char what[96];
+            snprintf(what, sizeof what, "none of the %d requested inputs could be opened", a.inputs.nrequired);
+            warn_inputs_gone(&a.inputs, what);
         }
+        cu_sun_ctl sun;
+        init_sun(&sun, &a, s.r);
+        print_header(&s, &a, &sun);
+        rc = run_loop(&s, &a, &sun);
     }
     cu_input_set_close(&a.inputs);
     cli_session_close(&s); /* DRM: puts the previous CRTC (the console) back */

@@ -2,8 +2,25 @@
 #include "input_backend.h"
 #include "session.h"
 #include "version.h"
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+
+int cli_parse_counts(const char *v, char sep, int n, long lo, long hi, long *out)
+{
+    for (int i = 0; i < n; i++) {
+        if (*v < '0' || *v > '9') /* strtol would take a sign and leading blanks */
+            return -1;
+        char *end;
+        errno = 0;
+        long x = strtol(v, &end, 10);
+        if (errno == ERANGE || x < lo || x > hi || *end != (i == n - 1 ? '\0' : sep))
+            return -1;
+        out[i] = x;
+        v = end + 1;
+    }
+    return 0;
+}
 
 int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
 {
@@ -12,15 +29,13 @@ int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
         o->verbose = 1;
         return 1;
     case CLI_OPT_SIZE: {
-        int w, h;
-        char tail;
-        if (sscanf(v, "%dx%d%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384 ||
-            strspn(v, "0123456789x") != strlen(v) || strlen(v) > 11) {
+        long wh[2];
+        if (cli_parse_counts(v, 'x', 2, 1, 16384, wh)) {
             fprintf(stderr, "%s: --size expects WxH with 1..16384, got '%s'\n", cmd, v);
             return -1;
         }
-        o->width = w;
-        o->height = h;
+        o->width = (int)wh[0];
+        o->height = (int)wh[1];
         return 1;
     }
     case CLI_OPT_BACKEND:

@@ -79,8 +79,14 @@ int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_di
 
 int cli_session_render(cli_session *s)
 {
+    return cli_session_render_view(s, NULL, NULL);
+}
+
+int cli_session_render_view(cli_session *s, const float *view, const float *projection)
+{
     cu_error e;
-    cu_frame f = {s->fbo, s->width, s->height, s->linear};
+    cu_frame f = {.fbo = s->fbo, .width = s->width, .height = s->height, .linear = s->linear, .view = view,
+                  .projection = projection};
     if (cu_render(s->r, &f, &e)) {
         fprintf(stderr, "cumulo: %s\n", e.msg);
         return 1;

@@ -49,6 +49,9 @@ enum { CLI_OPT_SIZE = 0x100, CLI_OPT_BACKEND, CLI_OPT_SET, CLI_OPT_DATA_DIR, CLI
     "  -v, --verbose          log the renderer's choices (GL strings, fallbacks)\n"                            \
     "  -h, --help             this help; --version: version and back ends\n"
 
+/* Reads v as exactly n decimal counts separated by sep ("64x48", "30"), each in [lo, hi] (lo >= 0), into out: 0, or -1
+ * for anything else. Digits only; an overflow of long (ERANGE) is an error, not a clamped or wrapped value. */
+int cli_parse_counts(const char *v, char sep, int n, long lo, long hi, long *out);
 /* Handles a common option returned by getopt_long (id, optarg): 1 = handled, 0 = not common, -1 = bad value (one
  * line printed, exit 2). `cmd` names the subcommand in messages. */
 int cli_common_getopt(cli_opts *o, int id, const char *arg, const char *cmd);
@@ -67,6 +70,8 @@ int cli_session_attach(cli_session *s, const cu_display_backend *be, const cu_di
  * failure, 0 on success. cli_session_close is safe after a failed open. */
 int cli_session_open(cli_session *s, const cli_opts *o);
 int cli_session_render(cli_session *s);
+/* The same with the host-style camera matrices of cu_frame (both NULL: the scene's [camera]). */
+int cli_session_render_view(cli_session *s, const float *view, const float *projection);
 /* Reads the frame back (top row first): RGBA8 for tone-mapped, RGB float for linear. */
 int cli_session_read_rgba8(cli_session *s, uint8_t *out);
 int cli_session_read_rgbf(cli_session *s, float *out);

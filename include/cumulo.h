@@ -52,6 +52,13 @@ int  cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t l
 /* "section.key=value", as given to --set; errors name "--set" and the field. */
 int  cu_scene_set(cu_scene *s, const char *assignment, cu_error *err);
 void cu_scene_output_size(const cu_scene *s, int *width, int *height);
+/* The scene's [camera]: position and look_at in world metres, vertical field of view in degrees. */
+void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], double *fov_deg);
+/* The scene's [camera] as a host would pass it in cu_frame: view (world -> eye) and a perspective projection for
+ * the aspect ratio width / height with the given clip planes (column-major). Passing these gives the same image
+ * as passing NULL. Fails for a non-positive or non-finite aspect or planes (0 < znear < zfar). */
+int  cu_scene_camera_matrices(const cu_scene *s, double aspect, double znear, double zfar, float view[16],
+                              float projection[16], cu_error *err);
 void cu_scene_free(cu_scene *s);
 
 /* ---- renderer ---- */
@@ -69,9 +76,33 @@ double cu_renderer_ms_gain(const cu_renderer *r, int transmitted);
 
 typedef struct cu_frame {
     unsigned fbo;        /* framebuffer to draw into (0 = the default one) */
-    int width, height;   /* viewport size in pixels */
+    int width, height;   /* viewport size in pixels; the frame covers (0, 0, width, height) of fbo */
     int linear;          /* 1: write linear radiance (needs a float colour target), 0: tone-mapped sRGB */
+    /* The host's camera, per frame and free of cost (nothing is rebuilt when it moves). Both NULL: the scene's
+     * [camera]. Both given: view is world -> eye (4x4, column-major, cumulo's world: metres, x east, y up, z south),
+     * projection eye -> clip (column-major, OpenGL conventions: the eye looks down -z, clip z in [-w, w]). Any
+     * perspective (bottom row (0, 0, -c, 0): any near and far, infinite far, asymmetric frusta) or orthographic
+     * (bottom row (0, 0, 0, c)) projection; others are an error. Only the projection's x, y and w rows shape the
+     * rays: cumulo rasterises its clouds with depth planes of its own, so the host's near and far never clip
+     * a cloud, except that an orthographic view starts at the host's near plane. Reversed-Z projections work
+     * (set depth_reversed for the depth texture). */
+    const float *view;
+    const float *projection;
+    /* The host's depth: a GL depth texture (DEPTH_COMPONENT16/24/32F or DEPTH24_STENCIL8) of the frame's size holding
+     * window depth under `projection` (glDepthRangef(0, 1)); 0 = none. The march stops at the host's surface, so
+     * geometry inside a cloud is veiled only by the cloud in front of it. It may be the depth attachment of fbo:
+     * cumulo samples it while drawing into its own target and never while fbo is bound. Its filtering and compare
+     * mode are overridden by a sampler object while cumulo reads it, and left as they were. */
+    unsigned depth_texture;
+    int depth_reversed;  /* 1: depth is cleared to 0 and nearer is larger (GL_GREATER); 0: cleared to 1 */
+    /* 1: no sky and no ground: the clouds alone, blended premultiplied over what fbo holds (tone-mapped like the
+     * sky would be, or linear radiance with linear = 1). Pixels no cloud covers keep the host's colour exactly. */
+    int clouds_only;
 } cu_frame;
+/* Draws one frame. Every GL state item listed in README "Embedding in your renderer" (framebuffer bindings,
+ * program, vertex array, array buffer, renderbuffer, active texture and the textures and samplers of units 0-10,
+ * viewport, blend, depth, stencil, cull face, scissor, colour mask, clear values, pixel alignment) is as the host
+ * left it when this returns; so do cu_renderer_create, cu_renderer_set_scene and cu_renderer_set_sun. */
 int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
 
 /* Image files for screenshots: RGBA8 pixels, top row first, as 8-bit PNG; RGB float pixels (linear radiance, top

@@ -1,9 +1,11 @@
 # mk/install.mk: `make install` and `make uninstall` (PREFIX, LIBDIR, DATADIR, MANDIR, DESTDIR), laid out as a Debian
 # packager expects: the programs a user runs (not the developer tools), libcumulo.so with its soname and the static
-# library, the public header, cumulo.pc, the tables, example scenes, man pages and the kiosk's systemd unit.
+# library, the public header, cumulo.pc, the tables, example scenes, man pages, the example host program's source
+# (as documentation) and the kiosk's systemd unit.
 BINDIR     = $(CONFIG_PREFIX)/bin
 INCLUDEDIR = $(CONFIG_PREFIX)/include
 PKGDATADIR = $(CONFIG_DATADIR)/cumulo
+DOCDIR     = $(CONFIG_DATADIR)/doc/cumulo
 # Debian's units live in /lib/systemd/system for PREFIX=/usr; elsewhere under the prefix.
 UNITDIR   ?= $(if $(filter /usr,$(CONFIG_PREFIX)),/lib/systemd/system,$(CONFIG_PREFIX)/lib/systemd/system)
 INSTALL   ?= install
@@ -20,7 +22,7 @@ ALL_BINS += $(B)/cumulo-kiosk.service
 install: all
 	$(INSTALL) -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(CONFIG_LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) \
 	    $(DESTDIR)$(PKGDATADIR)/data $(DESTDIR)$(PKGDATADIR)/scenes $(DESTDIR)$(CONFIG_MANDIR)/man1 \
-	    $(DESTDIR)$(CONFIG_MANDIR)/man5 $(DESTDIR)$(UNITDIR)
+	    $(DESTDIR)$(CONFIG_MANDIR)/man5 $(DESTDIR)$(UNITDIR) $(DESTDIR)$(DOCDIR)/examples
 	$(INSTALL) -m 755 $(INSTALL_PROGRAMS) $(DESTDIR)$(BINDIR)/
 	$(INSTALL) -m 644 $(B)/libcumulo.so.$(VERSION) $(DESTDIR)$(CONFIG_LIBDIR)/
 	ln -sf libcumulo.so.$(VERSION) $(DESTDIR)$(CONFIG_LIBDIR)/$(LIB_SONAME)
@@ -33,6 +35,7 @@ install: all
 	$(INSTALL) -m 644 docs/man/cumulo.1 $(DESTDIR)$(CONFIG_MANDIR)/man1/
 	$(INSTALL) -m 644 docs/man/cumulo.scene.5 $(DESTDIR)$(CONFIG_MANDIR)/man5/
 	$(INSTALL) -m 644 $(B)/cumulo-kiosk.service $(DESTDIR)$(UNITDIR)/
+	$(INSTALL) -m 644 examples/host_scene.c $(DESTDIR)$(DOCDIR)/examples/
 
 # Needs the same PREFIX (and LIBDIR, DATADIR, MANDIR) as the install; reads nothing from the build.
 U_PREFIX  = $(PREFIX)
@@ -44,4 +47,4 @@ uninstall:
 	rm -f $(DESTDIR)$(U_PREFIX)/include/cumulo.h
 	rm -f $(DESTDIR)$(MANDIR)/man1/cumulo.1 $(DESTDIR)$(MANDIR)/man5/cumulo.scene.5
 	rm -f $(DESTDIR)$(U_UNITDIR)/cumulo-kiosk.service
-	rm -rf $(DESTDIR)$(DATADIR)/cumulo
+	rm -rf $(DESTDIR)$(DATADIR)/cumulo $(DESTDIR)$(DATADIR)/doc/cumulo

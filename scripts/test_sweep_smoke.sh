@@ -56,7 +56,7 @@ check "--help describes every option" '[ -z "$missing" ] || { echo "  missing:$m
 r=$?
 check "--version: exit 0, one line" '[ $r -eq 0 ] && [ ! -s "$tmp/e" ] && [ $(wc -l <"$tmp/o") -eq 1 ] && grep -q "^cumulo-sweep [0-9]" "$tmp/o"'
 
-for args in "--bogus" "--size 0x1" "--spp x" "--scenes nope" "--budgets 0.3,0.6" "--frames" "-x" "stray" \
+for args in "--bogus" "--size 0x1" "--size 4294967312x12" "--spp 4294967297" "--spp x" "--scenes nope" "--budgets 0.3,0.6" "--frames" "-x" "stray" \
     "--ref-threads 0" "--baseline nope.scene"; do
     # shellcheck disable=SC2086
     "$bin" $args >"$tmp/o" 2>"$tmp/e"

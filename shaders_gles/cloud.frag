@@ -35,11 +35,22 @@ uniform vec3 u_sky_right, u_sky_up;
 
 #if FULLSCREEN
 in vec2 v_ndc;
-uniform mat4 u_inv_viewproj;   // clip -> cloud-local
 #else
 in vec3 v_pos;
 #endif
-uniform vec3 u_cam;            // camera, cloud-local
+uniform mat4 u_inv_viewproj;   // clip -> cloud-local
+uniform vec3 u_cam;            // camera, cloud-local (perspective)
+uniform bool u_ortho;          // parallel rays along u_view_dir, each from its pixel on the near plane
+uniform vec3 u_view_dir;
+uniform vec2 u_inv_viewport;   // 1 / the frame's size in pixels
+#if !ENERGY_PASS
+// The host's depth (cu_frame.depth_texture): the march ends at its surface. Window depth unprojected through the
+// host's own projection; u_host_clear is the value that means no geometry.
+uniform bool u_host_depth_on;
+uniform highp sampler2D u_host_depth;
+uniform mat4 u_host_inv_vp;
+uniform float u_host_clear;
+#endif
 uniform float u_bound_R;       // radius of a sphere about the local origin containing every ellipsoid
 uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
 uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1);
@@ -56,6 +67,14 @@ uniform float u_ms_g;          // anisotropy of the octave phase functions
 uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
 out vec4 o_color;
 
+// A fragment with no cloud on its ray. Full screen it is discarded; a hull fragment instead writes transparent black
+// (a no-op under the premultiplied blend): a shader that can discard makes llvmpipe and tilers run it before the
+// depth and stencil tests, for every hull layer of the pixel, instead of once.
+#if FULLSCREEN
+#define NO_CLOUD discard
+#else
+#define NO_CLOUD { o_color = vec4(0.0); return; }
+#endif
 
 vec3 phase_table(float cos_theta, int row)
 {
@@ -169,19 +188,44 @@ float sky_share(vec3 p, vec3 dir)
 
 void main()
 {
+    vec3 eye = u_cam, dir;
+    if (u_ortho) {
 #if FULLSCREEN
-    vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
-    vec3 dir = normalize(w.xyz / w.w - u_cam);
+        vec2 ndc = v_ndc;
 #else
-    vec3 dir = normalize(v_pos - u_cam);
+        vec2 ndc = gl_FragCoord.xy * u_inv_viewport * 2.0 - 1.0;
 #endif
+        vec4 w0 = u_inv_viewproj * vec4(ndc, -1.0, 1.0);
+        eye = w0.xyz / w0.w;
+        dir = u_view_dir;
+    } else {
+#if FULLSCREEN
+        vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
+        dir = normalize(w.xyz / w.w - u_cam);
+#else
+        dir = normalize(v_pos - u_cam);
+#endif
+    }
     // Start the ray near the cloud: the quadratic's terms grow like the camera distance squared, so fp32 chords
     // from far away lose digits (tests/test_precision.c). t counts from ro.
-    float t_base = max(dot(-u_cam, dir) - u_bound_R, 0.0);
-    vec3 ro = u_cam + dir * t_base;
+    float t_base = max(dot(-eye, dir) - u_bound_R, 0.0);
+    vec3 ro = eye + dir * t_base;
+    float t_end = 3.0e38;  // where the host's surface ends the ray, from ro
+#if !ENERGY_PASS
+    if (u_host_depth_on) {
+        float d = texelFetch(u_host_depth, ivec2(gl_FragCoord.xy), 0).r;
+        if (d != u_host_clear) {
+            vec4 q = u_host_inv_vp * vec4(gl_FragCoord.xy * u_inv_viewport * 2.0 - 1.0, 2.0 * d - 1.0, 1.0);
+            if (q.w != 0.0)
+                t_end = dot(q.xyz / q.w - ro, dir);
+            if (t_end <= 0.0)
+                NO_CLOUD;
+        }
+    }
+#endif
     cast_ray(ro, dir);
     if (n_hits == 0)
-        discard;
+        NO_CLOUD;
 
     // Per-pixel constants: the scattering angle is the same along the ray (parallel sunlight).
     float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
@@ -208,6 +252,9 @@ void main()
         float a, b;
         int merged;
         k = next_interval(k, a, b, merged);
+        if (a >= t_end)
+            break;
+        b = min(b, t_end);
         intervals++;
         float tau0 = tau, taup0 = taup;
         // Segments in geometric progression, shortest at the entry (DESIGN: Kol's eq. 3.23 is garbled).

@@ -36,8 +36,9 @@ vec3 xyY_to_rgb(float x, float y, float Y)
 
 void main()
 {
-    vec4 w = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
-    vec3 dir = normalize(w.xyz / w.w);
+    // The ray's direction from two depths (a perspective ray through the origin, or an orthographic view's one).
+    vec4 w0 = u_inv_viewproj * vec4(v_ndc, -1.0, 1.0), w1 = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
+    vec3 dir = normalize(w1.xyz / w1.w - w0.xyz / w0.w);
     vec3 L;
 #if SKY_CONSTANT
     L = u_sky_color; // uniform radiance from every direction, below the horizon too (matches other renderers)

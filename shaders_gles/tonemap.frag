@@ -5,6 +5,7 @@ precision highp float;
 uniform highp sampler2D u_hdr;
 uniform float u_exposure;
 uniform vec3 u_white;        // white balance: divides by the colour of typical daylight
+uniform bool u_composite;    // clouds only (cu_frame.clouds_only): blended premultiplied over the host's colour
 out vec4 o_color;
 vec3 srgb(vec3 c)
 {
@@ -13,11 +14,17 @@ vec3 srgb(vec3 c)
 void main()
 {
     vec4 c = texelFetch(u_hdr, ivec2(gl_FragCoord.xy), 0);
+    // Where no cloud is, the host's pixel stays exactly as it was.
+    if (u_composite && c.a <= 0.0)
+        discard;
 #if LINEAR_OUTPUT
     o_color = c;
 #else
-    vec3 x = max(c.rgb * u_exposure / u_white, vec3(0.0));
+    // Composited, the clouds' own radiance (premultiplied / coverage) is tone-mapped like the sky would be, then
+    // weighted by its coverage: the host's picture shows through where the cloud is thin.
+    float a = u_composite ? c.a : 1.0;
+    vec3 x = max(c.rgb / a * u_exposure / u_white, vec3(0.0));
     vec3 t = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    o_color = vec4(srgb(t), 1.0);
+    o_color = vec4(srgb(t) * a, a);
 #endif
 }

@@ -34,6 +34,13 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 $(foreach t,render extremes sunmap ms fallback,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
+# The extremes matrix of every key's range, through the GPU renderer and the path tracer.
+$(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
+# embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context).
+$(foreach t,embed embed_state,\
+  $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
+    $(HEADLESS_LIBS) $(GLES_LIBS))))
+CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh
@@ -70,14 +77,15 @@ $(eval $(call test_program,test_slab,tests/slab/test_slab.c $(B)/obj/tools/slab/
   $(B)/obj/tools/slab/fitlib.o,$(GSL_CFLAGS),$(GSL_LIBS)))
 CHECK_TESTS += tests/slab/test_slab_cli.sh
 $(eval $(call test_program,test_pathtrace,tests/pathtrace/test_pt.c $(PT_OBJS) $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_pt_limits,tests/pathtrace/test_pt_limits.c $(PT_OBJS) $(CORE),,$(LIB_LIBS)))
 CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 
 # build: configuration, install and an embedding program built against the installed copy (tests/build/).
 CHECK_TESTS += $(wildcard tests/build/test_*.sh)
 
 # The long versions (larger images, finer sweeps, thick slabs): `make stress`.
-stress: all $(B)/test_extremes $(B)/test_slab
-	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes tests/slab/test_slab_stress.sh
+stress: all $(B)/test_extremes $(B)/test_ranges $(B)/test_slab
+	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes $(B)/test_ranges tests/slab/test_slab_stress.sh
 
 # Rewrites the reference images from the current renderer (EGL); look at them before committing.
 refs: $(B)/test_render

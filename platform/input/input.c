@@ -1,5 +1,6 @@
 /* platform/input/input.c: parsing of `--input` specifications (gpio:, evdev:, stdin) into cu_input_spec; pure. */
 #include "input.h"
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,30 +21,47 @@ static int copy_value(char *dst, size_t cap, const char *v, size_t n, const char
     return 0;
 }
 
+/* The n characters at v as a decimal integer in [lo, hi] (lo >= 0): 0, or 1 for anything else. Digits only, since
+ * strtol takes a sign and leading blanks; its ERANGE is an error. Every number of the --input grammar reads here. */
 static int parse_int(const char *v, size_t n, long lo, long hi, long *out)
 {
     char buf[32];
     char *end;
-    if (n == 0 || n >= sizeof buf)
+    if (n == 0 || n >= sizeof buf || *v < '0' || *v > '9')
         return 1;
     memcpy(buf, v, n);
     buf[n] = '\0';
+    errno = 0;
     long x = strtol(buf, &end, 10);
-    if (*end || x < lo || x > hi)
+    if (*end || errno == ERANGE || x < lo || x > hi)
         return 1;
     *out = x;
     return 0;
 }
 
+void cu_input_escape(char *dst, size_t n, const char *src, const char *keep)
+{
+    if (!n)
+        return;
+    size_t o = 0;
+    for (const unsigned char *p = (const unsigned char *)src; *p; p++) {
+        int plain = (*p >= 32 && *p != 127) || strchr(keep, *p);
+        size_t need = plain ? 1 : 4;
+        if (o + need >= n)
+            break;
+        if (plain)
+            dst[o] = (char)*p;
+        else
+            snprintf(dst + o, 5, "\\x%02x", *p);
+        o += need;
+    }
+    dst[o] = 0;
+}
+
 int cu_input_line_offset(const char *s)
 {
-    char *end;
-    if (!s || !*s)
-        return -1;
-    long x = strtol(s, &end, 10);
-    if (*end || x < 0 || x > 65535 || s[0] == '-' || s[0] == '+' || s[0] == ' ')
-        return -1;
-    return (int)x;
+    long x;
+    return s && !parse_int(s, strlen(s), 0, 65535, &x) ? (int)x : -1;
 }
 
 static int parse_gpio(const char *spec, const char *p, cu_input_spec *o, char *err, size_t errlen)

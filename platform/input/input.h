@@ -51,6 +51,9 @@ int cu_input_parse(const char *s, cu_input_spec *out, char *err, size_t errlen);
 /* A GPIO line given as a number is an offset; anything else is a line name (e.g. "GPIO17" on a Pi). Returns the
  * offset, or -1 when it is a name. */
 int cu_input_line_offset(const char *s);
+/* Copies src into dst (n bytes, always terminated), every control byte but keep[]'s written as \xHH: text from a
+ * line or a device that is echoed into a log must not drive the terminal that shows it (ESC sequences, BEL). */
+void cu_input_escape(char *dst, size_t n, const char *src, const char *keep);
 
 /* A human-readable description for log lines, e.g. "gpio gpiochip0 a=17 b=27 button=22". */
 void cu_input_describe(const cu_input_spec *s, char *buf, size_t len);

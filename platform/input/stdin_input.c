@@ -52,11 +52,12 @@ static int number(const char *w, double lo, double hi, double *out)
 
 int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen)
 {
-    char tmp[CU_STDIN_LINE_MAX];
+    char tmp[4 * CU_STDIN_LINE_MAX];
     char *w[4];
     cu_action z = {0};
     *out = z;
-    snprintf(tmp, sizeof tmp, "%s", line);
+    /* Escaped before it is split: no word, and so no message quoting one, holds a control byte; no command has one. */
+    cu_input_escape(tmp, sizeof tmp, line, "\t\r");
     char *hash = strchr(tmp, '#');
     if (hash)
         *hash = '\0';

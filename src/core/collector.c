@@ -33,6 +33,24 @@ static int find_node(const double *v, int n, double x)
 
 typedef struct { double v[9]; int line; } row;
 
+/* Each field's range: the slab thickness t_m > 0, the depth d_m within it, angles in degrees, the weight C_ms and
+ * the spread sigma_m >= 0 (the shader takes its square root); the centroid offsets cx_m, cz_m may have any sign. */
+static int check_row(const double *v, const char *path, int ln, const char *const *names, cu_error *err)
+{
+    static const double lo[9] = {0, 0, 0, 0, 0, 0, -INFINITY, -INFINITY, 0};
+    static const double hi[9] = {INFINITY, 90, INFINITY, 180, 180, INFINITY, INFINITY, INFINITY, INFINITY};
+    for (int k = 0; k < 9; k++) {
+        double top = k == 2 ? v[0] * (1 + 1e-9) : hi[k];
+        if (v[k] < lo[k] || v[k] > top || (k == 0 && v[k] == 0)) {
+            if (k == 2)
+                return cu_fail(err, "%s:%d: field 'd_m': %.9g is out of range [0, t_m = %.9g]", path, ln, v[k], v[0]);
+            return cu_fail(err, "%s:%d: field '%s': %.9g is out of range %c%g, %g%c", path, ln, names[k], v[k],
+                           k == 0 ? '(' : '[', lo[k], hi[k], isinf(hi[k]) ? ')' : ']');
+        }
+    }
+    return 0;
+}
+
 static int read_collector(cu_collector *c, cu_textfile f, cu_error *err);
 
 int cu_collector_load(cu_collector *c, const char *path, cu_error *err)
@@ -83,11 +101,8 @@ static int read_collector(cu_collector *c, cu_textfile f, cu_error *err)
             goto out;
         }
         const double *v = rw.v;
-        if (v[0] <= 0 || v[1] < 0 || v[1] > 90 || v[3] < 0 || v[3] > 180 || v[4] < 0 || v[4] > 180 || v[2] < 0 ||
-            v[2] > v[0] * (1 + 1e-9) || v[8] < 0) {
-            cu_fail(err, "%s:%d: value out of range (t > 0, 0 <= d <= t, angles in degrees, sigma >= 0)", path, ln);
+        if (check_row(v, path, ln, names, err))
             goto out;
-        }
         if (n == cap) {
             row *nr = realloc(rows, 2 * cap * sizeof *rows);
             if (!nr) {

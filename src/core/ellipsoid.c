@@ -3,27 +3,23 @@
 
 int cu_ray_ellipsoid(vec3 o, vec3 d, vec3 c, vec3 r, double *t0, double *t1)
 {
-    vec3 q = v3_sub(o, c);
+    /* In the ellipsoid's unit-sphere frame, from the point of closest approach (t_c, |q_c|), as cast_ray in
+     * density.glsl: 1 - |q_c|^2 keeps its digits where B^2 - 4AC of the textbook quadratic cancels (a camera far
+     * away relative to the radius), and no term is a product of two large ones (B^2 overflowed for radii 1e-100,
+     * and its NaN interval kept the path tracer's delta tracking from ever reaching the interval's end). */
     vec3 ir = v3(1.0 / r.x, 1.0 / r.y, 1.0 / r.z);
-    vec3 qs = v3_mul(q, ir), ds = v3_mul(d, ir);
-    double A = v3_dot(ds, ds), B = 2.0 * v3_dot(qs, ds), C = v3_dot(qs, qs) - 1.0;
-    if (!(A > 0))
+    vec3 qs = v3_mul(v3_sub(o, c), ir), ds = v3_mul(d, ir);
+    double A = v3_dot(ds, ds);
+    if (!(A > 0) || !isfinite(A))
         return 0;
-    double disc = B * B - 4.0 * A * C;
-    if (disc < 0)
+    double tc = -v3_dot(qs, ds) / A;
+    vec3 qc = v3_add(qs, v3_scale(ds, tc));
+    double h2 = 1.0 - v3_dot(qc, qc);
+    if (!(h2 >= 0) || !isfinite(tc)) /* a miss, or terms out of range: never a NaN interval */
         return 0;
-    double sq = sqrt(disc);
-    /* q = -(B + sign(B) sqrt(disc))/2 avoids subtracting nearly equal numbers (grazing rays, far cameras). */
-    double qq = -0.5 * (B + (B >= 0 ? sq : -sq));
-    double a, b;
-    if (qq != 0) {
-        a = qq / A;
-        b = C / qq;
-    } else { /* B = 0 and disc = 0: tangent through the axis */
-        a = b = -B / (2 * A);
-    }
-    *t0 = a < b ? a : b;
-    *t1 = a < b ? b : a;
+    double hw = sqrt(h2 / A);
+    *t0 = tc - hw;
+    *t1 = tc + hw;
     return 1;
 }
 

@@ -3,6 +3,7 @@
 #include "error.h"
 #include "textfile.h"
 #include "vecmath.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,6 +37,46 @@ static int read_numbers(const cu_textfile *f, char *const *tok, int ntok, double
     return 0;
 }
 
+/* 2 pi int P dmu and 2 pi int P mu dmu of channel c by the trapezoid rule in theta over the table's own rows, every
+ * step-th one (the last row always included). */
+static void row_moments(const double *th, const double *pv, int n, int c, int step, double *m0, double *m1)
+{
+    *m0 = *m1 = 0;
+    for (int a = 0, b; a < n - 1; a = b) {
+        b = a + step < n ? a + step : n - 1;
+        double ta = th[a] * CU_PI / 180, tb = th[b] * CU_PI / 180, w = CU_PI * (tb - ta);
+        double fa = pv[3 * a + c] * sin(ta), fb = pv[3 * b + c] * sin(tb);
+        *m0 += w * (fa + fb);
+        *m1 += w * (fa * cos(ta) + fb * cos(tb));
+    }
+}
+
+/* The table must integrate to what it claims: P normalised over the sphere (the header's promise, and what the
+ * shader assumes) and the g it states. The tolerance comes from the table's grid: the trapezoid error of the full
+ * rows is about |T(h) - T(2h)| / 3 (Richardson; the rule is second order), so |T(h) - T(2h)| allows three times
+ * that, plus 1e-6 for the 8 significant digits the rows are written with. It is capped at 1e-2: a table whose own
+ * step halving moves its integral by more than 1% does not resolve its phase function. */
+static int check_integrals(const double *th, const double *pv, int n, const double g[3], const char *path,
+                           int ln_angles, int ln_g, cu_error *err)
+{
+    static const char *const names[3] = {"P_r", "P_g", "P_b"};
+    for (int c = 0; c < 3; c++) {
+        double a0, a1, b0, b1;
+        row_moments(th, pv, n, c, 1, &a0, &a1);
+        row_moments(th, pv, n, c, 2, &b0, &b1);
+        double tol = fmin(1e-2, fabs(a0 - b0) + 1e-6);
+        if (!(fabs(a0 - 1) <= tol))
+            return cu_fail(err, "%s:%d: field '%s': 2 pi int P dmu is %.9g, not 1 (tolerance %.2g from the grid)",
+                           path, ln_angles, names[c], a0, tol);
+        double ga = a1 / a0, gb = b0 > 0 ? b1 / b0 : 0;
+        tol = fmin(1e-2, fabs(ga - gb) + 1e-6);
+        if (!(fabs(ga - g[c]) <= tol))
+            return cu_fail(err, "%s:%d: field 'g': %.9g, but P gives %.9g (tolerance %.2g from the grid)", path, ln_g,
+                           g[c], ga, tol);
+    }
+    return 0;
+}
+
 static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err);
 
 int cu_phase_table_load_mie(cu_phase_table *t, const char *path, cu_error *err)
@@ -64,7 +105,8 @@ static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err)
     const char *path = f.path;
     static const char *const row_names[4] = {"theta_deg", "P_r", "P_g", "P_b"};
     int have = 0, nang = -1, got = 0, rc = 0, r;
-    double chop = -1, lam[3];
+    double chop = -1, lam[3], g[3] = {0};
+    int ln_angles = 0, ln_g = 0;
     double *th = NULL, *pv = NULL;
     while (!rc && (r = cu_textfile_next(&f, err)) != 0) {
         if (r < 0) {
@@ -132,11 +174,12 @@ static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err)
         switch (k) {
         case K_LAMBDA: memcpy(lam, v, sizeof v); have |= 1; break;
         case K_SIGMA: memcpy(t->sigma_ext_um2, v, sizeof v); have |= 2; break;
-        case K_G: have |= 4; break;
+        case K_G: memcpy(g, v, sizeof v); ln_g = ln; have |= 4; break;
         case K_CHOP: chop = v[0]; break;
         case K_F: have |= 8; break;
         case K_ANGLES:
             nang = (int)v[0];
+            ln_angles = ln;
             th = malloc(sizeof(double) * (size_t)nang);
             pv = malloc(sizeof(double) * 3 * (size_t)nang);
             if (!th || !pv)
@@ -154,6 +197,8 @@ static int read_mie(cu_phase_table *t, cu_textfile f, cu_error *err)
         rc = cu_fail(err, "%s:%d: fewer angle rows than 'angles' says (truncated file?)", path, ln);
     if (!rc && th[nang - 1] != 180)
         rc = cu_fail(err, "%s:%d: the last angle row must be 180 degrees", path, ln);
+    if (!rc)
+        rc = check_integrals(th, pv, nang, g, path, ln_angles, ln_g, err);
     if (rc) {
         free(th);
         free(pv);

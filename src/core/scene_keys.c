@@ -3,6 +3,7 @@
 #include "error.h"
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,36 +28,56 @@ static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in
 #define BOOL(sec, key, def, doc, field) {sec, key, CU_KEY_BOOL, 1, bool_names, def, 0, 0, 0, 0, "", doc, field, 0}
 
 const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
+    /* size <= 16384: GLES limits (GL_MAX_RENDERBUFFER_SIZE, checked at render time); the maths is per pixel */
     INT("output", "size", 2, "640 480", 1, 16384, 0, "pixels", "image width and height", S(width)),
+    /* exposure <= 1e6: the tone curve squares exposure x radiance (tonemap.frag: x (2.51 x + 0.03)), which overflows
+     * fp32 beyond 1.1e19; radiance is at most the sun disk's, irradiance / 6.8e-5 sr <= 1.5e10, so x <= 1.5e16. */
     NUM("output", "exposure", 1, "0.06", 0, 1e6, 1, "", "multiplies radiance (kcd/m^2) before the filmic tone curve",
         S(exposure)),
-    NUM("camera", "position", 3, "0 0 0", -1e7, 1e7, 0, "m", "where the camera is; world: y up, x east, z south",
+    /* |x| <= 5e5 m (the camera within 500 km of the origin): the renderer works cloud-local in fp32, and a point
+     * 1.7e6 m away is held to 2^-24 x 1.7e6 = 0.1 m. How far from the smallest ellipsoid it may be is the
+     * whole-scene check's (cu_scene_check_ranges): 1e5 of its radii. */
+    NUM("camera", "position", 3, "0 0 0", -5e5, 5e5, 0, "m", "where the camera is; world: y up, x east, z south",
         S(cam_pos)),
-    NUM("camera", "look_at", 3, "0 0 0", -1e7, 1e7, 0, "m", "the point the camera looks at (not its position)",
+    NUM("camera", "look_at", 3, "0 0 0", -5e5, 5e5, 0, "m", /* only its direction is used (normalised in fp64) */ "the point the camera looks at (not its position)",
         S(cam_look)),
-    NUM("camera", "fov", 1, "50", 0, 179, 1, "degrees", "vertical field of view", S(cam_fov)),
+    /* fov >= 0.1 deg: a pixel spans fov / height >= 0.1 deg / 16384 = 1.1e-7 rad, two fp32 ulps of a unit direction;
+     * narrower, neighbouring pixels share one fp32 ray. <= 179: tan(fov / 2) <= 115, a finite frustum. */
+    NUM("camera", "fov", 1, "50", 0.1, 179, 0, "degrees", "vertical field of view", S(cam_fov)),
+    /* angles: only their sines and cosines enter, finite for any value; turbidity: Preetham's fit covers 1.7 .. 10 */
     NUM("sun", "elevation", 1, "0", -90, 90, 0, "degrees", "angle of the sun above the horizon", S(sun_elevation)),
     NUM("sun", "azimuth", 1, "0", -360, 720, 0, "degrees", "direction of the sun, from north toward east",
         S(sun_azimuth)),
     NUM("sun", "turbidity", 1, "2.5", 1.7, 10, 0, "", "Preetham atmospheric turbidity", S(turbidity)),
-    {"sun", "irradiance", CU_KEY_NUMBER, 3, NULL, NULL, 0, 1e9, 0, 0, "",
+    /* irradiance, sky colour <= 1e6 (Preetham's sun: ~100): with exposure <= 1e6 the tone curve stays finite (above) */
+    {"sun", "irradiance", CU_KEY_NUMBER, 3, NULL, NULL, 0, 1e6, 0, 0, "",
      "RGB irradiance on a plane perpendicular to the rays; unset: from the Preetham model", S(sun_irradiance),
      S(has_sun_irradiance)},
     ENUM("sky", "model", sky_names, "preetham", "preetham, or constant: uniform radiance from every direction",
          S(sky_model)),
-    NUM("sky", "color", 3, "0 0 0", 0, 1e9, 0, "", "RGB radiance of the constant sky", S(sky_color)),
+    NUM("sky", "color", 3, "0 0 0", 0, 1e6, 0, "", "RGB radiance of the constant sky", S(sky_color)),
+    /* albedo in [0, 1]: a reflectance; above 1 the ground would amplify light */
     NUM("sky", "ground_albedo", 1, "0.2", 0, 1, 0, "", "Lambertian ground seen below the horizon", S(ground_albedo)),
+    /* density <= 1e7 cm^-3 and r_e <= 1000 um: k_e <= 1e13 x 2 pi 1e-6 = 6.3e7 m^-1, so optical depths through a
+     * 2e5 m chord reach 1.3e13, finite in fp32; the path tracer's steps per path are bounded (tools/pathtrace). */
     NUM("cloud", "density", 1, "400", 0, 1e7, 0, "cm^-3", "droplets in the core (rho_0)", S(density_cm3)),
     NUM("cloud", "droplet_radius", 1, "6", 0, 1000, 1, "um",
         "effective radius r_e (extinction 2 pi r_e^2 when the phase is analytic)", S(droplet_radius_um)),
+    /* boundary <= 1e6 m: only d / h enters (d <= the largest radius, 1e5 m), so any h is finite; 1e6 keeps h > d */
     NUM("cloud", "boundary", 1, "62", 0, 1e6, 0, "m", "thickness h of the noisy boundary", S(boundary_m)),
+    /* noise_scale <= 1e4 (a tile per 0.1 m); the product with the cloud's size is the whole-scene check's */
     NUM("cloud", "noise_scale", 1, "1", 0, 1e4, 1, "",
         "1: one 64^3 noise tile spans 1000 m (the 8x layer repeats every 125 m)", S(noise_scale)),
     ENUM("cloud", "phase", phase_names, "mie", "phase function: mie (data/mie_cloud.tbl), hg or cornette-shanks",
          S(phase)),
+    /* |g| <= 0.99: the HG and Cornette-Shanks denominators (1 + g^2 - 2 g mu)^1.5 stay >= 1e-6, the forward peak
+     * (1 + g) / (4 pi (1 - g)^2) <= 1.6e3 sr^-1, far from fp32 overflow */
     NUM("cloud", "g", 1, "0.86", -0.99, 0.99, 0, "", "asymmetry of hg and cornette-shanks", S(phase_g)),
     ENUM("cloud", "profile", profile_names, "tapered",
          "density profile: tapered noise, or kol (Kol eq. 3.1 as printed)", S(profile)),
+    /* [quality], [light] and [ms] counts: loop counts and array sizes the shaders are compiled with; no count enters
+     * a formula as a magnitude. segment_ratio <= 10: knot_t in density.glsl is written as r^(j - n) so that r^n
+     * never overflows (10^192 would over 3 merged chords of 64 segments). */
     INT("quality", "segments", 1, "5", 1, 64, 0, "", "march segments per ellipsoid crossed", S(segments)),
     NUM("quality", "segment_ratio", 1, "1.6", 1, 10, 0, "", "ratio of consecutive segment lengths (1: uniform)",
         S(segment_ratio)),
@@ -89,6 +110,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          "multiple scattering: slab (Bouthors' model, Kol's fixed blur), collector (Bouthors' iterative collector "
          "search), octaves (Wrenninge) or none",
          S(ms_mode)),
+    /* Wrenninge's a, b, c in [0, 1]: the octaves' factors a^o, b^o, c^o shrink, so their sums stay <= octaves */
     INT("ms", "octaves", 1, "4", 1, 8, 0, "", "mode = octaves: Wrenninge's octave count", S(ms_octaves)),
     NUM("ms", "a", 1, "0.5", 0, 1, 0, "", "mode = octaves: extinction factor per octave", S(ms_a)),
     NUM("ms", "b", 1, "0.5", 0, 1, 0, "", "mode = octaves: scattering factor per octave", S(ms_b)),
@@ -97,6 +119,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          "sky and ground light; with slab or collector and a Preetham sky, sky and ground told apart by the slab "
          "model",
          S(sky_light)),
+    /* blur in (0, 1e6] m: log2(blur / texel) is the slab maps' LOD, finite for blur > 0 and clamped to the mips */
     NUM("ms", "blur", 1, "200", 0, 1e6, 1, "m",
         "mode = slab: width over which the slab maps are averaged around a point (Kol's fixed LOD)", S(ms_blur_m)),
     INT("ms", "iterations", 1, "10", 1, 32, 0, "", "mode = collector: most search steps (Bouthors eqs. 3.59-3.63)",
@@ -108,8 +131,13 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
 };
 
 const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT] = {
-    NUM("ellipsoid", "center", 3, NULL, -1e7, 1e7, 0, "m", "centre, world coordinates (required)", E(center)),
-    NUM("ellipsoid", "radii", 3, NULL, 0, 1e6, 1, "m", "semi-axes along world x, y, z (required)", E(radii)),
+    /* |x| <= 5e5 m, as the camera: fp32 holds the cloud-local frame (origin mid-cloud) to 0.1 m at 1.7e6 m. */
+    NUM("ellipsoid", "center", 3, NULL, -5e5, 5e5, 0, "m", "centre, world coordinates (required)", E(center)),
+    /* radii in [0.1, 1e5] m (a cumulus cell is 1 m .. 20 km). >= 0.1 m: the shaders' absolute slacks (1e-3 m chord
+     * tolerance in extinction(), 5 cm end-sample nudge) stay small against the chord, and 1 / r^2 is far from fp32
+     * overflow (radii 1e-20 made the chord's terms 1e42). <= 1e5 m: chords and optical depths stay finite (density
+     * above), and the cloud's frame fits in fp32 (centre). The ratio to the scene's size: cu_scene_check_ranges. */
+    NUM("ellipsoid", "radii", 3, NULL, 0.1, 1e5, 0, "m", "semi-axes along world x, y, z (required)", E(radii)),
 };
 #undef S
 #undef E
@@ -159,6 +187,52 @@ const cu_scene_key *cu_scene_key_find(const char *section, const char *name)
     return NULL;
 }
 
+const char *cu_number_text(double v, char buf[32])
+{
+    for (int digits = 6; digits <= 17; digits++) { /* %g's own 6 first: "90", not "9e+01" */
+        snprintf(buf, 32, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v)
+            break;
+    }
+    return buf;
+}
+
+int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
+{
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, rmin = 1e300;
+    for (int i = 0; i < s->n_ellipsoids; i++)
+        for (int a = 0; a < 3; a++) {
+            lo[a] = fmin(lo[a], s->ell[i].center[a] - s->ell[i].radii[a]);
+            hi[a] = fmax(hi[a], s->ell[i].center[a] + s->ell[i].radii[a]);
+            rmin = fmin(rmin, s->ell[i].radii[a]);
+        }
+    double R = 0, dc = 0; /* as cu_cloud_build: origin mid-AABB, R over centres plus largest radii */
+    for (int i = 0; i < s->n_ellipsoids; i++) {
+        const double *c = s->ell[i].center, *r = s->ell[i].radii;
+        double d2 = 0;
+        for (int a = 0; a < 3; a++)
+            d2 += (c[a] - 0.5 * (lo[a] + hi[a])) * (c[a] - 0.5 * (lo[a] + hi[a]));
+        R = fmax(R, sqrt(d2) + fmax(r[0], fmax(r[1], r[2])));
+    }
+    for (int a = 0; a < 3; a++)
+        dc += (s->cam_pos[a] - 0.5 * (lo[a] + hi[a])) * (s->cam_pos[a] - 0.5 * (lo[a] + hi[a]));
+    dc = sqrt(dc);
+    char b0[32], b1[32], b2[32];
+    if (s->n_ellipsoids && fmax(dc, 4 * R) > CU_MAX_SCENE_TO_RADIUS * rmin)
+        return cu_fail(err,
+                       "%s: the scene is too large for its smallest radius, %s m: the camera is %s m from the cloud's "
+                       "centre, the cloud's radius is %s m; the distance and 4x the radius must each be at most %g "
+                       "smallest radii (single-precision positions)",
+                       file, cu_number_text(rmin, b0), cu_number_text(dc, b1), cu_number_text(R, b2),
+                       CU_MAX_SCENE_TO_RADIUS);
+    if (s->n_ellipsoids && s->noise && R * s->noise_scale > CU_MAX_NOISE_EXTENT)
+        return cu_fail(err,
+                       "%s: [cloud] 'noise_scale' %s is too fine for a cloud of radius %s m: radius x noise_scale "
+                       "must be at most %g m for single precision noise coordinates (or quality.noise = off)",
+                       file, cu_number_text(s->noise_scale, b0), cu_number_text(R, b1), CU_MAX_NOISE_EXTENT);
+    return 0;
+}
+
 static int clip40(int n)
 {
     return n > 40 ? 40 : n;
@@ -199,10 +273,12 @@ int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const
         if (isinf(v) || errno == ERANGE) {
             if (isinf(v) || fabs(v) > 1.0)
                 return cu_fail(err, "%s: '%s' is out of range (%.*s)", at, k->name, clip40((int)(end - p)), p);
-            v = 0.0; /* underflow to zero is harmless */
+            /* underflow: keep strtod's subnormal or zero, so the smallest positive double stays positive and the
+             * range check judges the value written, not a 0 it never said */
         }
+        char b0[32];
         if (k->type == CU_KEY_INTEGER && v != floor(v))
-            return cu_fail(err, "%s: '%s' must be a whole number, got %g", at, k->name, v);
+            return cu_fail(err, "%s: '%s' must be a whole number, got %s", at, k->name, cu_number_text(v, b0));
         vals[n++] = v;
         p = end;
     }
@@ -212,10 +288,12 @@ int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const
         double v = vals[i];
         int bad = k->lo_open ? !(v > k->lo) : !(v >= k->lo);
         if (bad || v > k->hi) {
+            char b0[32], b1[32], b2[32];
             if (k->lo_open && k->lo == 0 && v <= 0)
-                return cu_fail(err, "%s: '%s' must be positive, got %g", at, k->name, v);
-            return cu_fail(err, "%s: '%s' must be in [%g, %g]%s%s, got %g", at, k->name, k->lo, k->hi,
-                           k->unit[0] ? " " : "", k->unit, v);
+                return cu_fail(err, "%s: '%s' must be positive, got %s", at, k->name, cu_number_text(v, b0));
+            return cu_fail(err, "%s: '%s' must be in %s%s, %s]%s%s, got %s", at, k->name, k->lo_open ? "(" : "[",
+                           cu_number_text(k->lo, b0), cu_number_text(k->hi, b1), k->unit[0] ? " " : "", k->unit,
+                           cu_number_text(v, b2));
         }
     }
     for (int i = 0; i < n; i++) {

@@ -58,6 +58,21 @@ const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n);
  * The multiple-of rule is not checked here: the parser reports it once the whole file is read. */
 int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const char *at, cu_error *err);
 
+/* v as %g writes it, with more digits (up to 17) until it reads back as v, in buf: "179.0001", not "179". */
+const char *cu_number_text(double v, char buf[32]);
+
+/* How much larger than its smallest radius a scene may be: the GPU holds positions in fp32 (2^-24 relative), so a
+ * point at distance L from where the chord is solved is off by 2^-24 L, which is 0.6% of r_min at L = 1e5 r_min. L is
+ * the camera's distance from the cloud's centre (the ray start is moved to the cloud along the camera ray) and 4 R,
+ * the longest sun-map ray (the sun plane sits at 2 R, R the cloud's bounding radius). */
+#define CU_MAX_SCENE_TO_RADIUS 1e5
+/* Noise texels: a position p (cloud-local, |p| <= R) reads the 64^3 tile at 8 p noise_scale / 1000 tiles, i.e.
+ * 0.512 |p| noise_scale texels; fp32 keeps 1/16 texel there up to 2^20 texels: R noise_scale <= 2^20 / 0.512 m. */
+#define CU_MAX_NOISE_EXTENT 2.05e6
+/* The whole-scene ranges that tie keys together (the scene's size against its smallest radius, the noise scale
+ * against the cloud's size): 0, or 1 with a message starting with file. */
+int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err);
+
 /* Writes the default of every key of keys[0..n-1] that has one into base (a cu_scene or a cu_ellipsoid). */
 void cu_scene_keys_defaults(void *base, const cu_scene_key *keys, int n);
 #endif

@@ -26,9 +26,9 @@ double cu_scene_core_extinction(const cu_scene *s)
 }
 
 /* The int a key of cu_scene_keys writes, for the multiple-of rule. */
-static int *int_field(cu_scene *s, const cu_scene_key *k)
+static int int_field(const cu_scene *s, const cu_scene_key *k)
 {
-    return (int *)((char *)s + k->offset);
+    return *(const int *)((const char *)s + k->offset);
 }
 
 /* Records that the file or --set gave k: presets leave it alone, and a key with a "given" flag sets it. */
@@ -48,7 +48,24 @@ typedef struct file_state {
 } file_state;
 typedef char ell_keys_fit[CU_ELLIPSOID_KEY_COUNT <= 32 && CU_ELLIPSOID_KEY_COUNT <= CU_SCENE_KEY_COUNT ? 1 : -1];
 
-static int post_checks(cu_scene *s, const char *file, const file_state *fs, cu_error *err)
+/* The checks that span keys or need the whole scene: run after the file and after every --set, so both reject the
+ * same scenes. `at` names where the values came from (the file, or the --set). */
+static int scene_checks(const cu_scene *s, const char *at, cu_error *err)
+{
+    for (int i = 0; i < CU_SCENE_KEY_COUNT; i++) {
+        const cu_scene_key *k = &cu_scene_keys[i];
+        if (k->multiple && int_field(s, k) % k->multiple)
+            return cu_fail(err, "%s: [%s] '%s' must be a multiple of %d, got %d", at, k->section, k->name,
+                           k->multiple, int_field(s, k));
+    }
+    double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
+    if (dx * dx + dy * dy + dz * dz < 1e-12)
+        return cu_fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", at);
+    return cu_scene_check_ranges(s, at, err);
+}
+
+/* What only a whole file can lack: its required sections and each ellipsoid's required keys. */
+static int file_checks(const cu_scene *s, const char *file, const file_state *fs, cu_error *err)
 {
     for (int i = 0; i < CU_SCENE_SECTION_COUNT; i++)
         if (cu_scene_sections[i].required && !cu_scene_sections[i].repeated && !fs->have_section[i])
@@ -60,16 +77,7 @@ static int post_checks(cu_scene *s, const char *file, const file_state *fs, cu_e
             if (!cu_ellipsoid_keys[i].def && !(fs->ell_seen[e] >> i & 1))
                 return cu_fail(err, "%s:%d:1: [ellipsoid] #%d has no '%s'", file, fs->ell_line[e], e + 1,
                                cu_ellipsoid_keys[i].name);
-    for (int i = 0; i < CU_SCENE_KEY_COUNT; i++) {
-        const cu_scene_key *k = &cu_scene_keys[i];
-        if (k->multiple && *int_field(s, k) % k->multiple)
-            return cu_fail(err, "%s: [%s] '%s' must be a multiple of %d, got %d", file, k->section, k->name,
-                           k->multiple, *int_field(s, k));
-    }
-    double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
-    if (dx * dx + dy * dy + dz * dz < 1e-12)
-        return cu_fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", file);
-    return 0;
+    return scene_checks(s, file, err);
 }
 
 /* Applies the scene's quality preset to every key it lists that the file (or an earlier --set) did not set itself:
@@ -243,7 +251,9 @@ int cu_scene_parse(cu_scene **out, const char *name, const char *text, size_t le
     }
     cu_scene_defaults(s);
     snprintf(s->name, sizeof s->name, "%s", name);
-    int rc = parse_lines(s, fs, name, text, len, err) || post_checks(s, name, fs, err) || apply_preset(s, name, err);
+    /* A UTF-8 byte-order mark (what some Windows editors write first) is not part of the text. */
+    size_t bom = len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3) ? 3 : 0;
+    int rc = parse_lines(s, fs, name, text + bom, len - bom, err) || file_checks(s, name, fs, err) || apply_preset(s, name, err);
     free(fs);
     if (rc) {
         free(s);
@@ -276,11 +286,10 @@ int cu_scene_load(cu_scene **out, const char *path, cu_error *err)
     return rc;
 }
 
-int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
+/* One --set on s as given: the key's own checks only (cu_scene_set adds the whole-scene ones). */
+static int set_key(cu_scene *s, const char *assignment, cu_error *err)
 {
     char buf[512];
-    if (strlen(assignment) >= sizeof buf)
-        return cu_fail(err, "--set: assignment too long");
     snprintf(buf, sizeof buf, "%s", assignment);
     char *eq = strchr(buf, '=');
     if (!eq)
@@ -310,19 +319,36 @@ int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
         return cu_fail(err, "--set %s: unknown key '%s.%s'", assignment, section, key);
     char label[600];
     snprintf(label, sizeof label, "--set %.40s.%.40s", section, key);
-    int old = k->multiple ? *int_field(s, k) : 0;
     if (cu_scene_key_parse(k, (char *)base + k->offset, val, label, err))
         return 1;
-    if (k->multiple && *int_field(s, k) % k->multiple) {
-        *int_field(s, k) = old;
-        return cu_fail(err, "--set %s.%s: must be a multiple of %d", k->section, k->name, k->multiple);
+    if (!sec->repeated) {
+        mark_given(s, k);
+        if (k == cu_scene_key_find("quality", "preset") && apply_preset(s, "--set", err))
+            return 1;
     }
-    if (sec->repeated)
-        return 0;
-    mark_given(s, k);
-    if (k == cu_scene_key_find("quality", "preset"))
-        return apply_preset(s, "--set", err);
-    return 0;
+    return scene_checks(s, label, err);
+}
+
+int cu_scene_set(cu_scene *s, const char *assignment, cu_error *err)
+{
+    if (strlen(assignment) >= 512)
+        return cu_fail(err, "--set: assignment too long");
+    /* Control bytes are never part of a key or a value; naming them here keeps every later message free of them. */
+    for (const unsigned char *p = (const unsigned char *)assignment; *p; p++)
+        if (*p < 32 || *p == 127) {
+            char shown[4 * 512 + 1];
+            return cu_fail(err, "--set %s: control byte 0x%02x", cu_escape(shown, sizeof shown, assignment), *p);
+        }
+    /* All or nothing: a rejected --set, whichever check rejects it, leaves the scene as it was. */
+    cu_scene *old = malloc(sizeof *old);
+    if (!old)
+        return cu_fail(err, "--set: out of memory");
+    memcpy(old, s, sizeof *s);
+    int rc = set_key(s, assignment, err);
+    if (rc)
+        memcpy(s, old, sizeof *s);
+    free(old);
+    return rc;
 }
 
 void cu_scene_output_size(const cu_scene *s, int *width, int *height)

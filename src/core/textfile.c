@@ -46,10 +46,18 @@ int cu_textfile_next(cu_textfile *f, cu_error *err)
         f->line++;
         if (memchr(f->buf, 0, (size_t)len))
             return -cu_fail(err, "%s:%d: NUL byte in the line", f->path, f->line);
+        /* Nor any other control byte: a token that held one would be quoted back in a message, to a terminal. */
+        for (ssize_t i = 0; i < len; i++) {
+            unsigned char c = (unsigned char)f->buf[i];
+            if ((c < 32 && c != '\t' && c != '\r' && c != '\n') || c == 127)
+                return -cu_fail(err, "%s:%d: not a text file (byte 0x%02x)", f->path, f->line, c);
+        }
         if (len - (len > 0 && f->buf[len - 1] == '\n') > CU_TEXT_MAX_LINE)
             return -cu_fail(err, "%s:%d: line longer than %d characters", f->path, f->line, CU_TEXT_MAX_LINE);
         f->ntok = 0;
         char *p = f->buf;
+        if (f->line == 1 && len >= 3 && !memcmp(p, "\xef\xbb\xbf", 3))
+            p += 3; /* a UTF-8 byte-order mark is not text */
         for (;;) {
             while (blank(*p))
                 p++;

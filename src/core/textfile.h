@@ -24,7 +24,7 @@ int cu_textfile_open(cu_textfile *f, const char *path, const char *what, const c
 
 /* Reads up to the next line that has a token: a token starting with '#' and what follows it are a comment. Returns 1
  * with the line in f->tok, 0 at the end of the file, -1 with err filled ("PATH:LINE: ...") for a line longer than
- * CU_TEXT_MAX_LINE, a NUL byte or a read error. */
+ * CU_TEXT_MAX_LINE, a NUL or other control byte (tab and CR aside) or a read error. */
 int cu_textfile_next(cu_textfile *f, cu_error *err);
 
 void cu_textfile_close(cu_textfile *f);

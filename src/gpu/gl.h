@@ -7,26 +7,29 @@
 
 #define CU_GL_FUNCS(X) \
     X(ActiveTexture, ACTIVETEXTURE) X(AttachShader, ATTACHSHADER) X(BeginQuery, BEGINQUERY) \
-    X(BindBuffer, BINDBUFFER) X(BindFramebuffer, BINDFRAMEBUFFER) X(BindRenderbuffer, BINDRENDERBUFFER) \
-    X(BindTexture, BINDTEXTURE) X(BindVertexArray, BINDVERTEXARRAY) X(BlendFunc, BLENDFUNC) \
+    X(BindBuffer, BINDBUFFER) X(BindFramebuffer, BINDFRAMEBUFFER) X(BindRenderbuffer, BINDRENDERBUFFER) X(BindSampler, BINDSAMPLER) \
+    X(BindTexture, BINDTEXTURE) X(BindVertexArray, BINDVERTEXARRAY) X(BlendEquation, BLENDEQUATION) \
+    X(BlendEquationSeparate, BLENDEQUATIONSEPARATE) X(BlendFunc, BLENDFUNC) X(BlendFuncSeparate, BLENDFUNCSEPARATE) \
     X(BufferData, BUFFERDATA) X(BufferSubData, BUFFERSUBDATA) \
     X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS) X(Clear, CLEAR) X(ClearColor, CLEARCOLOR) \
     X(ClearDepthf, CLEARDEPTHF) X(ClearStencil, CLEARSTENCIL) X(ColorMask, COLORMASK) X(CompileShader, COMPILESHADER) \
     X(CreateProgram, CREATEPROGRAM) X(CreateShader, CREATESHADER) X(DeleteBuffers, DELETEBUFFERS) \
     X(DeleteFramebuffers, DELETEFRAMEBUFFERS) X(DeleteProgram, DELETEPROGRAM) X(DeleteQueries, DELETEQUERIES) \
-    X(DeleteRenderbuffers, DELETERENDERBUFFERS) X(DeleteShader, DELETESHADER) X(DeleteTextures, DELETETEXTURES) \
+    X(DeleteRenderbuffers, DELETERENDERBUFFERS) X(DeleteSamplers, DELETESAMPLERS) X(DeleteShader, DELETESHADER) X(DeleteTextures, DELETETEXTURES) \
     X(DeleteVertexArrays, DELETEVERTEXARRAYS) X(DepthFunc, DEPTHFUNC) X(DepthMask, DEPTHMASK) \
     X(Disable, DISABLE) X(DrawArrays, DRAWARRAYS) X(DrawBuffers, DRAWBUFFERS) \
     X(DrawElementsInstanced, DRAWELEMENTSINSTANCED) X(Enable, ENABLE) \
     X(EnableVertexAttribArray, ENABLEVERTEXATTRIBARRAY) X(EndQuery, ENDQUERY) X(Finish, FINISH) X(Flush, FLUSH) \
     X(FramebufferRenderbuffer, FRAMEBUFFERRENDERBUFFER) X(FramebufferTexture2D, FRAMEBUFFERTEXTURE2D) \
     X(GenBuffers, GENBUFFERS) X(GenerateMipmap, GENERATEMIPMAP) X(GenFramebuffers, GENFRAMEBUFFERS) X(GenQueries, GENQUERIES) \
-    X(GenRenderbuffers, GENRENDERBUFFERS) X(GenTextures, GENTEXTURES) X(GenVertexArrays, GENVERTEXARRAYS) \
-    X(GetError, GETERROR) X(GetIntegerv, GETINTEGERV) X(GetProgramInfoLog, GETPROGRAMINFOLOG) \
+    X(GenRenderbuffers, GENRENDERBUFFERS) X(GenSamplers, GENSAMPLERS) X(GenTextures, GENTEXTURES) X(GenVertexArrays, GENVERTEXARRAYS) \
+    X(GetBooleanv, GETBOOLEANV) X(GetError, GETERROR) X(GetFloatv, GETFLOATV) X(GetIntegerv, GETINTEGERV) X(GetProgramInfoLog, GETPROGRAMINFOLOG) \
     X(GetProgramiv, GETPROGRAMIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \
     X(GetShaderiv, GETSHADERIV) X(GetString, GETSTRING) X(GetStringi, GETSTRINGI) \
-    X(GetUniformLocation, GETUNIFORMLOCATION) X(LinkProgram, LINKPROGRAM) X(PixelStorei, PIXELSTOREI) \
-    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(ShaderSource, SHADERSOURCE) X(StencilFunc, STENCILFUNC) X(StencilOp, STENCILOP) \
+    X(GetUniformLocation, GETUNIFORMLOCATION) X(IsEnabled, ISENABLED) X(LinkProgram, LINKPROGRAM) X(PixelStorei, PIXELSTOREI) \
+    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(SamplerParameteri, SAMPLERPARAMETERI) \
+    X(ShaderSource, SHADERSOURCE) X(StencilFunc, STENCILFUNC) X(StencilFuncSeparate, STENCILFUNCSEPARATE) \
+    X(StencilMaskSeparate, STENCILMASKSEPARATE) X(StencilOp, STENCILOP) X(StencilOpSeparate, STENCILOPSEPARATE) \
     X(TexImage2D, TEXIMAGE2D) X(TexImage3D, TEXIMAGE3D) X(TexParameteri, TEXPARAMETERI) \
     X(Uniform1f, UNIFORM1F) X(Uniform1fv, UNIFORM1FV) X(Uniform1i, UNIFORM1I) X(Uniform2f, UNIFORM2F) \
     X(Uniform3f, UNIFORM3F) X(Uniform3fv, UNIFORM3FV) X(Uniform4fv, UNIFORM4FV) \

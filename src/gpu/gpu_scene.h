@@ -14,7 +14,8 @@
 struct cu_collector;
 
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
-enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4 };
+enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
+       CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
@@ -32,13 +33,26 @@ typedef struct cu_slab_maps {
     vec3 sky_right, sky_up;
 } cu_slab_maps;
 
-/* The frame's camera, cloud-local (the big world offset removed in double precision on the CPU). */
+/* The frame's camera, cloud-local (the big world offset removed in double precision on the CPU), built by
+ * camera.c from the host's matrices or the scene's [camera]. */
 typedef struct cu_camera {
-    vec3 pos;
-    double znear;
-    float vp[16], inv_vp[16];
+    vec3 pos;                /* perspective: the eye */
+    int ortho;               /* 1: parallel rays along view_dir, each from its pixel on the near plane */
+    vec3 view_dir;           /* the view's forward direction */
+    double znear;            /* of vp (cumulo's own depth planes around the clouds) */
+    double near_reach;       /* perspective: the near plane's farthest point from the eye, in units of znear */
+    int visible;             /* 0: the clouds' bounds lie wholly outside the view (its frustum and depths) */
+    int near_cuts;           /* 1: the host's near plane (orthographic) cuts the clouds' bounds */
+    float vp[16], inv_vp[16];/* the host's x, y, w rows with cumulo's depth row */
     float inv_rot[16];       /* clip space to directions, the camera at the origin: the sky's */
+    float host_inv_vp[16];   /* the host's own clip space to cloud-local: unprojects its depth texture */
 } cu_camera;
+
+/* The host's depth texture for this frame (0 = none) and the depth that means "no geometry". */
+typedef struct cu_host_depth {
+    GLuint tex;
+    float clear;
+} cu_host_depth;
 
 typedef struct cu_gpu_scene {
     const cu_gl *gl;
@@ -65,6 +79,8 @@ typedef struct cu_gpu_scene {
     int sun_size;
 
     cu_camera camera;        /* this frame's */
+    cu_host_depth host_depth;/* this frame's */
+    int width, height;       /* this frame's size */
     cu_sun_maps sun;         /* published by the sun pass */
     cu_slab_maps slab;       /* published by the slab pass */
     double ms_gain[2];       /* published by the energy closure: gains on reflected, transmitted multiple scattering */

@@ -7,6 +7,7 @@
 
 typedef struct cu_pass_cloud {
     GLuint prog_depth, prog_hull, prog_fs;
+    GLuint host_sampler; /* nearest, no compare: how the host's depth texture is read, whatever its own state */
     GLint depth_viewproj;
     cu_shading_locs hull, fs;
 } cu_pass_cloud;
@@ -14,6 +15,10 @@ typedef struct cu_pass_cloud {
 int cu_pass_cloud_create(cu_pass_cloud *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
                          cu_error *err);
 void cu_pass_cloud_destroy(cu_pass_cloud *p, const cu_gl *gl);
-/* Draws premultiplied over what the bound target holds (the sky); its depth and stencil must be cleared. */
+/* 1 when this frame's camera needs the full-screen path: the near plane may cut a hull (the camera inside or near
+ * one, or an orthographic near plane inside the clouds' bounds). */
+int cu_pass_cloud_fullscreen(const cu_gpu_scene *ctx);
+/* Draws premultiplied over what the bound target holds (the sky, or nothing); its depth and stencil must be
+ * cleared. Reads the host's depth (ctx->host_depth) on CU_UNIT_HOST_DEPTH when there is one. */
 void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx);
 #endif

@@ -7,6 +7,7 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_tonemap_locs *l)
 {
     l->exposure = cu_gpu_loc(gl, prog, "u_exposure");
     l->white = cu_gpu_loc(gl, prog, "u_white");
+    l->composite = cu_gpu_loc(gl, prog, "u_composite");
     cu_gpu_unit(gl, prog, "u_hdr", 0);
 }
 
@@ -52,7 +53,8 @@ int cu_pass_tonemap_resize(cu_pass_tonemap *p, const cu_gpu_scene *ctx, int w, i
     return cu_target_create(&p->hdr, ctx->gl, &d, err);
 }
 
-void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, unsigned fbo, int linear)
+void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, unsigned fbo, int linear,
+                          int composite)
 {
     const cu_gl *gl = ctx->gl;
     const cu_scene *s = ctx->scene;
@@ -61,6 +63,13 @@ void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, uns
     gl->Viewport(0, 0, p->hdr.width, p->hdr.height);
     const cu_tonemap_locs *l = linear ? &p->copy : &p->tonemap;
     gl->UseProgram(linear ? p->prog_copy : p->prog_tonemap);
+    gl->Uniform1i(l->composite, composite);
+    if (composite) {
+        gl->Enable(GL_BLEND);
+        gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    } else {
+        gl->Disable(GL_BLEND);
+    }
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, p->hdr.tex[0]);
     int pre = p->hdr.format == GL_RGBA8; /* the passes applied exposure and white already (cu_out_scale) */

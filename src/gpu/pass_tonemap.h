@@ -6,7 +6,7 @@
 #include "target.h"
 
 typedef struct cu_tonemap_locs {
-    GLint exposure, white;
+    GLint exposure, white, composite;
 } cu_tonemap_locs;
 
 typedef struct cu_pass_tonemap {
@@ -21,6 +21,8 @@ void cu_pass_tonemap_destroy(cu_pass_tonemap *p, const cu_gl *gl);
 /* (Re)allocates the HDR target for a w x h frame: RGBA32F for linear output, else RGBA16F or, without half-float
  * targets, RGBA8. Its format goes into ctx->hdr_format (through the renderer). */
 int cu_pass_tonemap_resize(cu_pass_tonemap *p, const cu_gpu_scene *ctx, int w, int h, int linear, cu_error *err);
-/* From the HDR target into framebuffer fbo. */
-void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, unsigned fbo, int linear);
+/* From the HDR target into framebuffer fbo: over every pixel, or (composite) blended premultiplied over what fbo
+ * holds, leaving the pixels no cloud covers untouched. */
+void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, unsigned fbo, int linear,
+                          int composite);
 #endif

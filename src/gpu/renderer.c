@@ -2,7 +2,10 @@
  * frame: it creates the passes, orders them (sun, slab maps, energy closure; sky, depth and cloud; tone map) and
  * tracks what is dirty (the sun moved, the scene changed, the frame's size changed). */
 #include "renderer.h"
+#include "camera.h"
 #include "error.h"
+#include "glstate.h"
+#include "scene_camera.h"
 #include "upload.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,8 +77,11 @@ int cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err)
      * (OSMesa) has it in core. We probe the real answer rather than trusting the strings alone. */
     int ext_f = !r->is_gles || cu_gl_has_extension(gl, "GL_EXT_color_buffer_float");
     int ext_h = ext_f || cu_gl_has_extension(gl, "GL_EXT_color_buffer_half_float");
+    cu_glstate st;
+    cu_glstate_enter(gl, &st);
     ctx->float_rt = ext_f && probe_renderable(gl, GL_RGBA32F);
     ctx->half_rt = ext_h && probe_renderable(gl, GL_RGBA16F);
+    cu_glstate_leave(gl, &st);
     cu_gpu_log(ctx, CU_LOG_INFO, "GL: %s | %s | %s", r->vendor, r->renderer_name, r->version);
     cu_gpu_log(ctx, CU_LOG_INFO, "HDR target: %s", ctx->half_rt ? "RGBA16F (EXT_color_buffer_half_float/float)"
                                            : "RGBA8 fallback (no float colour targets: highlights clip)");
@@ -162,7 +168,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
     return 0;
 }
 
-int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
+static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
     delete_scene_objects(r);
@@ -208,6 +214,15 @@ int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     return 0;
 }
 
+int cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
+{
+    cu_glstate st;
+    cu_glstate_enter(&r->gl, &st);
+    int rc = set_scene(r, s, err);
+    cu_glstate_leave(&r->gl, &st);
+    return rc;
+}
+
 int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err)
 {
     if (!isfinite(elevation_deg) || !isfinite(azimuth_deg) || elevation_deg < -90 || elevation_deg > 90)
@@ -251,46 +266,48 @@ static void sun_passes(cu_renderer *r)
     r->sun_dirty = 0;
 }
 
-/* The frame's camera in cloud-local coordinates, and the sky's rotation-only inverse. */
-static void frame_camera(const cu_renderer *r, const cu_frame *f, cu_camera *c)
+/* The frame's camera: the host's matrices, or the scene's [camera] through exactly the float matrices
+ * cu_scene_camera_matrices gives a host, so both are one image by construction (camera.c replaces the depth
+ * planes, so the ones asked for here do not matter). */
+static int frame_camera(const cu_renderer *r, const cu_frame *f, cu_camera *c, cu_error *err)
 {
     const cu_scene *s = &r->scene;
-    vec3 cam = v3_sub(v3_from(s->cam_pos), r->cloud.origin);
-    vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
-    double dist = v3_len(cam);
     double hull_r = r->cloud.bound_radius * cu_hull_scale(s->hull_tessellation);
-    double zfar = dist + hull_r * 1.05 + 10.0;
-    /* Near plane as far out as the clouds allow: depth precision ~ z^2 / (near 2^24). */
-    double znear = fmax(0.05, 0.5 * (dist - hull_r));
-    double aspect = (double)f->width / f->height, fov = s->cam_fov * CU_PI / 180.0;
-    mat4 vp = m4_mul(m4_perspective(fov, aspect, znear, zfar), m4_look_dir(cam, dir, v3(0, 1, 0)));
-    c->pos = cam;
-    c->znear = znear;
-    m4_to_float(vp, c->vp);
-    m4_to_float(m4_inverse(vp), c->inv_vp);
-    /* The sky only needs directions: the camera at the origin and fixed clip planes, so the sky does not depend on
-     * where the clouds are (an empty scene is bit-for-bit the sky). */
-    mat4 proj_dir = m4_perspective(fov, aspect, 1.0, 2.0);
-    m4_to_float(m4_inverse(m4_mul(proj_dir, m4_look_dir(v3(0, 0, 0), dir, v3(0, 1, 0)))), c->inv_rot);
+    float view[16], proj[16];
+    const float *v = f->view, *p = f->projection;
+    if (!v) {
+        if (cu_scene_camera_matrices(s, (double)f->width / f->height, 1.0, 2.0, view, proj, err))
+            return 1;
+        v = view;
+        p = proj;
+    }
+    return cu_camera_build(c, cu_camera_mat4(v), cu_camera_mat4(p), r->cloud.origin, hull_r, err);
 }
 
-int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
+static int check_frame(const cu_frame *f, cu_error *err)
 {
-    if (!r->has_scene)
-        return cu_fail(err, "render: no scene set");
     if (f->width < 1 || f->height < 1 || f->width > 16384 || f->height > 16384)
         return cu_fail(err, "render: bad frame size %dx%d", f->width, f->height);
+    if (!f->view != !f->projection)
+        return cu_fail(err, "render: cu_frame.view and .projection are given together or not at all");
+    return 0;
+}
+
+static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
+{
     cu_gl *gl = &r->gl;
     cu_gpu_scene *ctx = &r->ctx;
-    while (gl->GetError() != GL_NO_ERROR) {
-    }
-    if (cu_pass_tonemap_resize(&r->pass_tonemap, ctx, f->width, f->height, f->linear, err))
+    if (frame_camera(r, f, &ctx->camera, err) ||
+        cu_pass_tonemap_resize(&r->pass_tonemap, ctx, f->width, f->height, f->linear, err))
         return 1;
     ctx->hdr_format = r->pass_tonemap.hdr.format;
+    ctx->width = f->width;
+    ctx->height = f->height;
+    ctx->host_depth.tex = f->depth_texture;
+    ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
     if (r->sun_dirty)
         sun_passes(r);
 
-    frame_camera(r, f, &ctx->camera);
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
     gl->Viewport(0, 0, f->width, f->height);
     gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
@@ -298,12 +315,31 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->DepthMask(GL_TRUE);
     gl->ClearDepthf(1.0f);
     gl->ClearStencil(0);
-    gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-    cu_pass_sky_draw(&r->pass_sky, ctx);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
+    gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
+    if (!f->clouds_only)
+        cu_pass_sky_draw(&r->pass_sky, ctx);
     cu_pass_cloud_draw(&r->pass_cloud, ctx);
-    cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear);
+    cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR)
         return cu_fail(err, "render: GL error 0x%x", e);
     return 0;
+}
+
+int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
+{
+    if (!r->has_scene)
+        return cu_fail(err, "render: no scene set");
+    if (check_frame(f, err))
+        return 1;
+    cu_gl *gl = &r->gl;
+    while (gl->GetError() != GL_NO_ERROR) {
+    }
+    cu_glstate st;
+    cu_glstate_enter(gl, &st);
+    int rc = render_frame(r, f, err);
+    cu_glstate_leave(gl, &st);
+    return rc;
 }

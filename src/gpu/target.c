@@ -58,9 +58,28 @@ static void alloc_texture(const cu_gl *gl, const cu_target_desc *d, int depth)
     }
 }
 
+/* Over a limit, TexImage2D and RenderbufferStorage only raise GL_INVALID_VALUE and the framebuffer reads as
+ * incomplete, which does not say why: the size is checked against the limits first, and the message names them. */
+static int check_limits(const cu_gl *gl, const cu_target_desc *d, cu_error *err)
+{
+    GLint tex = 0, rb = 0, vp[2] = {0, 0};
+    gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
+    gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
+    gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    int over = d->width > tex || d->height > tex || d->width > vp[0] || d->height > vp[1] ||
+               (d->depth_stencil && (d->width > rb || d->height > rb));
+    if (over)
+        return cu_fail(err, "%s: framebuffer %dx%d exceeds this GPU's limit (GL_MAX_TEXTURE_SIZE %d, "
+                       "GL_MAX_RENDERBUFFER_SIZE %d, GL_MAX_VIEWPORT_DIMS %dx%d)", d->name, d->width, d->height,
+                       (int)tex, (int)rb, (int)vp[0], (int)vp[1]);
+    return 0;
+}
+
 int cu_target_create(cu_target *t, const cu_gl *gl, const cu_target_desc *d, cu_error *err)
 {
     memset(t, 0, sizeof *t);
+    if (check_limits(gl, d, err))
+        return 1;
     int depth = d->format == GL_DEPTH_COMPONENT32F;
     int n = depth ? 1 : d->colors < 1 ? 1 : d->colors > 2 ? 2 : d->colors;
     for (int i = 0; i < n; i++) {

@@ -20,6 +20,13 @@ case "$out" in
   *"GL_RENDERER:"*"[cumulus.scene] size=64x48:quality.segments=2: FPS: "*" FrameTime: "*" ms p95: "*) t_ok "bench output" ;;
   *) t_fail "bench output" "$out" ;;
 esac
+out=$($C bench scenes/cumulus.scene --frames 3 --warmup 0 --size 32x24 --camera both --orbit-step 30 2>&1)
+case "$out" in
+  *"camera=orbit:orbit-step=30: FPS: "*"camera=orbit:orbit-step=30:unmoved: FPS: "*"moving/unmoved median frame time: "*)
+    t_ok "bench --camera both output" ;;
+  *) t_fail "bench --camera both output" "$out" ;;
+esac
+t_expect "bench bad camera" 2 "--camera expects static, orbit or both" -- $C bench scenes/cumulus.scene --camera spin
 
 printf '[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 nan 1\n' > "$T/bad.scene"
 t_expect "bad scene value" 1 "$T/bad.scene:8:9: 'radii' is NaN" -- $C render "$T/bad.scene" -o "$T/x.png"
@@ -29,7 +36,7 @@ t_expect "binary garbage" 1 "not a text file" -- $C render "$T/garbage.scene" -o
 t_expect "empty scene" 1 "$T/empty.scene:1:1: empty scene file" -- $C render "$T/empty.scene" -o "$T/x.png"
 t_expect "missing scene" 1 "nope.scene: cannot open" -- $C render nope.scene -o "$T/x.png"
 t_expect "bad --set key" 2 "unknown key 'cloud.colour'" -- $C render scenes/cumulus.scene -o "$T/x.png" --set cloud.colour=1
-t_expect "bad --set value" 2 "'radii' must be positive, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --set value" 2 "'radii' must be in [0.1, 100000] m, got -5" -- $C render scenes/cumulus.scene -o "$T/x.png" --set "ellipsoid.1.radii=1 -5 1"
 t_expect "bad --size" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size 0x10
 t_expect "bad output type" 2 "must end in .png or .pfm" -- $C render scenes/cumulus.scene -o "$T/x.jpg"
 t_expect "unknown back end" 2 "unknown back end 'vulkan'" -- $C render scenes/cumulus.scene -o "$T/x.png" --backend vulkan
@@ -45,7 +52,7 @@ done
 for opt in --output --size --backend --set --data-dir --verbose; do
   case "$($C render --help)" in *"$opt"*) t_ok "render --help describes $opt" ;; *) t_fail "render --help describes $opt" "missing" ;; esac
 done
-for opt in --frames --warmup --csv --sun-every-frame --sun-step; do
+for opt in --frames --warmup --csv --sun-every-frame --sun-step --camera --orbit-step; do
   case "$($C bench --help)" in *"$opt"*) t_ok "bench --help describes $opt" ;; *) t_fail "bench --help describes $opt" "missing" ;; esac
 done
 v=$($C --version); rc=$?
@@ -62,6 +69,13 @@ t_expect "PNG onto a full disk" 1 "No space left on device" -- $C render scenes/
 t_expect "PFM onto a full disk" 1 "write failed" -- $C render scenes/cumulus.scene --size 8x8 -o "$T/full.pfm"
 t_expect "unknown command" 2 "unknown command 'paint'" -- $C paint
 t_expect "bench bad frames" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames -3
+# Counts are digits only and never wrap: strtol took " 5" and "+5"; --size must not wrap through an int either.
+t_expect "bench frames with a blank" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames " 5"
+t_expect "bench warmup with a sign" 2 "--warmup expects a count" -- $C bench scenes/cumulus.scene --warmup +1
+t_expect "bench frames overflow" 2 "--frames expects a count" -- $C bench scenes/cumulus.scene --frames 18446744073709551617
+t_expect "size with a sign" 2 "--size expects WxH" -- $C render scenes/cumulus.scene -o "$T/x.png" --size +8x8
+ln -sf /dev/full "$T/full.csv"
+t_expect "bench csv onto a full disk" 1 "cannot write $T/full.csv: No space left on device" -- $C bench scenes/cumulus.scene --frames 1 --warmup 0 --size 8x8 --csv "$T/full.csv"
 t_expect "unwritable output" 1 "cannot write PNG" -- $C render scenes/cumulus.scene --size 8x8 -o /nonexistent/dir/x.png
 # The presets compiled into the engine (src/core/presets.c) are the ones the sweep chose (docs/sweep_presets.txt): every
 # key=value of each preset's --set line must appear in that preset's entry, except cloud.phase (a preset never changes

@@ -125,6 +125,12 @@ if (cd "$T/outside" && PKG_CONFIG_PATH=$P/lib/pkgconfig cc -std=c99 -Wall -Wextr
       $(PKG_CONFIG_PATH=$P/lib/pkgconfig pkg-config --cflags --libs cumulo) -lEGL -lGLESv2) >"$log" 2>&1; then
   t_ok "example builds outside the tree with pkg-config --cflags --libs cumulo"
 else t_fail "example builds outside the tree with pkg-config" "$(tail -5 "$log")"; fi
+# The example host renderer, installed as documentation, builds the way its first comment says.
+if (cd "$T/outside" && PKG_CONFIG_PATH=$P/lib/pkgconfig cc -std=c99 -Wall -Wextra -Werror \
+      "$P/share/doc/cumulo/examples/host_scene.c" -o host_scene \
+      $(PKG_CONFIG_PATH=$P/lib/pkgconfig pkg-config --cflags --libs cumulo egl glesv2) -lm) >"$log" 2>&1; then
+  t_ok "installed examples/host_scene.c builds with pkg-config cumulo egl glesv2"
+else t_fail "installed host_scene.c builds" "$(tail -5 "$log")"; fi
 out=$(cd "$T/outside" && env -u CUMULO_DATA_DIR LD_LIBRARY_PATH=$P/lib ./embed "$P/share/cumulo/scenes/cumulus.scene" 2>&1); rc=$?
 case "$out" in
   *"data $P/share/cumulo/data"*) [ $rc -eq 0 ] && t_ok "example renders against the installed library and tables" ||

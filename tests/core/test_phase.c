@@ -90,6 +90,9 @@ static const bad_table bad[] = {
     {HEAD "angles 2\n0 1 1e39 1\n180 1 1 1\n", "t.tbl:8: field 'P_g': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
     {"sigma_ext_um2 1 1e300 1\n", "t.tbl:1: field 'sigma_ext_um2': '1e300' does not fit in a float (|x| <= 3.403e+38)"},
     {"# comment\n\n  \t\nchop_deg 1e39\n", "t.tbl:4: field 'chop_deg': '1e39' does not fit in a float (|x| <= 3.403e+38)"},
+    /* a control byte is never part of a table, and quoting it back would drive the terminal (ESC [2J clears it) */
+    {"channels 3\n\x1b[2Jcolour 1 2 3\n", "t.tbl:2: not a text file (byte 0x1b)"},
+    {"# \x07 in a comment\n", "t.tbl:1: not a text file (byte 0x07)"},
 };
 
 static void test_hostile_tables(void **st)
@@ -130,12 +133,60 @@ static void test_hostile_tables(void **st)
     assert_non_null(strstr(e.msg, "cannot open the Mie table"));
 }
 
+/* Writes an HG-free test table: HEAD's keys with g given, then 181 rows (1 degree apart) of P = p0 + p1 cos(theta),
+ * behind an optional UTF-8 byte-order mark. */
+static void write_table(const char *bom, const char *g, double p0, double p1)
+{
+    FILE *f = fopen("build/test-output/t.tbl", "w");
+    assert_non_null(f);
+    fprintf(f, "%schannels 3\nlambda_nm 600 540 450\nsigma_ext_um2 173 173 172\ng %s\nchop_deg 8\nf 0 0 0\n"
+               "angles 181\n", bom, g);
+    for (int i = 0; i <= 180; i++) {
+        double p = p0 + p1 * cos(i * CU_PI / 180);
+        fprintf(f, "%d %.9g %.9g %.9g\n", i, p, p, p);
+    }
+    assert_int_equal(fclose(f), 0);
+}
+
+/* A table must integrate to what it claims: 2 pi int P dmu = 1, and the g it states. */
+static void test_table_integrals(void **st)
+{
+    (void)st;
+    cu_phase_table t;
+    cu_error e;
+    const double iso = 1 / (4 * CU_PI);
+    /* isotropic, and P = (1 + 3 g mu) / 4 pi, whose g is g: both load, the second one behind a BOM */
+    write_table("", "0 0 0", iso, 0);
+    assert_int_equal(cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e), 0);
+    assert_true(fabs(t.g_full[1]) < 1e-6);
+    cu_phase_table_free(&t);
+    write_table("\xef\xbb\xbf", "0.2 0.2 0.2", iso, 3 * 0.2 * iso);
+    if (cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e))
+        fail_msg("%s", e.msg);
+    assert_true(fabs(t.g_full[1] - 0.2) < 1e-4);
+    cu_phase_table_free(&t);
+    static const struct { const char *g; double p0, p1; const char *message; } bad[] = {
+        {"0 0 0", 0, 0, "t.tbl:7: field 'P_r': 2 pi int P dmu is 0, not 1"},
+        {"0 0 0", 1, 0, "t.tbl:7: field 'P_r': 2 pi int P dmu is 12.566"},
+        {"0.85 0 0", 1 / (4 * CU_PI), 0, "t.tbl:4: field 'g': 0.85, but P gives "},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_table("", bad[i].g, bad[i].p0, bad[i].p1);
+        memset(&e, 0, sizeof e);
+        int rc = cu_phase_table_load_mie(&t, "build/test-output/t.tbl", &e);
+        const char *msg = strstr(e.msg, "t.tbl:");
+        if (rc == 0 || !msg || strncmp(msg, bad[i].message, strlen(bad[i].message)) != 0)
+            fail_msg("case %zu: rc %d\n got      '%s'\n expected '%s...'", i, rc, e.msg, bad[i].message);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_forms),
         cmocka_unit_test(test_committed_mie_table),
         cmocka_unit_test(test_hostile_tables),
+        cmocka_unit_test(test_table_integrals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -82,9 +82,9 @@ static const bad_case bad[] = {
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 200 120\n",
      "t.scene:8:9: 'radii' needs 3 numbers, got 2"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 -2 3\n",
-     "t.scene:8:9: 'radii' must be positive, got -2"},
+     "t.scene:8:9: 'radii' must be in [0.1, 100000] m, got -2"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 0 3\n",
-     "t.scene:8:9: 'radii' must be positive, got 0"},
+     "t.scene:8:9: 'radii' must be in [0.1, 100000] m, got 0"},
     {"[camera]\nposition = nan 0 0\n", "t.scene:2:12: 'position' is NaN"},
     {"[camera]\nfov = inf\n", "t.scene:2:7: 'fov' is out of range (inf)"},
     {"[camera]\nfov = 1e400\n", "t.scene:2:7: 'fov' is out of range (1e400)"},
@@ -108,6 +108,21 @@ static const bad_case bad[] = {
      "t.scene:6:1: [ellipsoid] #1 has no 'center'"},
     {"[camera]\n[camera]\n", "t.scene:2:1: section [camera] appears twice"},
     {"[sun]\nelevation = 91\n", "t.scene:2:13: 'elevation' must be in [-90, 90] degrees, got 91"},
+    /* values shown with the digits that make them fail (%g printed "got 179" and "got 5") */
+    {"[camera]\nfov = 179.0001\n", "t.scene:2:7: 'fov' must be in [0.1, 179] degrees, got 179.0001"},
+    {"[quality]\nsegments = 5.0000001\n", "t.scene:2:12: 'segments' must be a whole number, got 5.0000001"},
+    {"[output]\nexposure = 0\n", "t.scene:2:12: 'exposure' must be positive, got 0"},
+    {"[cloud]\nnoise_scale = 1e-400\n", "t.scene:2:15: 'noise_scale' must be positive, got 0"},
+    /* whole-scene ranges (scene_keys.h): the scene's size against its smallest radius, noise against size */
+    {"[camera]\nposition = 0 0 -20000\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\n"
+     "radii = 0.1 1 1\n",
+     "t.scene: the scene is too large for its smallest radius, 0.1 m: the camera is 20000 m from the cloud's centre, "
+     "the cloud's radius is 1 m; the distance and 4x the radius must each be at most 100000 smallest radii "
+     "(single-precision positions)"},
+    {"[camera]\nposition = 0 0 -2000\nlook_at = 0 0 0\n[sun]\n[cloud]\nnoise_scale = 10000\n[ellipsoid]\n"
+     "center = 0 0 0\nradii = 300 300 300\n",
+     "t.scene: [cloud] 'noise_scale' 10000 is too fine for a cloud of radius 300 m: radius x noise_scale must be at "
+     "most 2.05e+06 m for single precision noise coordinates (or quality.noise = off)"},
 };
 
 static void test_bad_inputs(void **st)
@@ -154,7 +169,7 @@ static void test_bad_set(void **st)
     assert_int_not_equal(cu_scene_set(s, "camera.fov=nan", &e), 0);
     assert_string_equal(e.msg, "--set camera.fov: 'fov' is NaN");
     assert_int_not_equal(cu_scene_set(s, "ellipsoid.1.radii=1 1 -1", &e), 0);
-    assert_string_equal(e.msg, "--set ellipsoid.radii: 'radii' must be positive, got -1");
+    assert_string_equal(e.msg, "--set ellipsoid.radii: 'radii' must be in [0.1, 100000] m, got -1");
     /* a failed --set leaves the value unchanged */
     assert_true(s->ell[0].radii[2] == 3.0);
     cu_scene_free(s);
@@ -220,6 +235,54 @@ static void test_missing_file(void **st)
     assert_string_equal(e.msg, "no/such.scene: cannot open: No such file or directory");
 }
 
+/* Every whole-scene check of the file runs on --set too, and a --set it rejects leaves the scene as it was. */
+static void test_set_cross_field(void **st)
+{
+    (void)st;
+    cu_scene *s, *before;
+    cu_error e;
+    assert_int_equal(parse(MIN_SCENE, &s, &e), 0);
+    assert_int_equal(parse(MIN_SCENE, &before, &e), 0);
+    assert_int_not_equal(cu_scene_set(s, "camera.look_at=0 0 -10", &e), 0);
+    assert_string_equal(e.msg, "--set camera.look_at: [camera] 'look_at' equals 'position'; the view direction is "
+                               "undefined");
+    assert_int_not_equal(cu_scene_set(s, "camera.position=0 0 0", &e), 0);
+    assert_string_equal(e.msg, "--set camera.position: [camera] 'look_at' equals 'position'; the view direction is "
+                               "undefined");
+    assert_int_not_equal(cu_scene_set(s, "light.sun_samples=6", &e), 0);
+    assert_string_equal(e.msg, "--set light.sun_samples: [light] 'sun_samples' must be a multiple of 4, got 6");
+    assert_int_not_equal(cu_scene_set(s, "light.osm_slices=9", &e), 0);
+    assert_memory_equal(s, before, sizeof *s);
+    /* presets break no check, and moving one end of the view at a time is fine while they differ */
+    assert_int_equal(cu_scene_set(s, "quality.preset=low", &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.look_at=0 0 -20", &e), 0);
+    assert_int_equal(cu_scene_set(s, "camera.position=0 0 -20.5", &e), 0);
+    cu_scene_free(s);
+    cu_scene_free(before);
+}
+
+/* A UTF-8 byte-order mark is skipped; control bytes given to --set come back escaped, never raw. */
+static void test_bom_and_control_bytes(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse("\xef\xbb\xbf" MIN_SCENE, &s, &e), 0);
+    assert_true(s->ell[0].radii[2] == 3.0);
+    /* only at the very start: elsewhere it is a syntax error like any other text */
+    cu_scene *t = NULL;
+    assert_int_not_equal(parse(MIN_SCENE "\xef\xbb\xbf[sky]\n", &t, &e), 0);
+    assert_null(t);
+    assert_int_not_equal(cu_scene_set(s, "quality.\x1b[31mx=1", &e), 0);
+    assert_null(strchr(e.msg, '\x1b'));
+    assert_non_null(strstr(e.msg, "\\x1b[31mx"));
+    assert_int_not_equal(cu_scene_set(s, "cloud.phase=\x1b]0;pwned\x07", &e), 0);
+    assert_null(strchr(e.msg, '\x1b'));
+    assert_null(strchr(e.msg, '\x07'));
+    assert_non_null(strstr(e.msg, "\\x1b]0;pwned\\x07"));
+    cu_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -227,6 +290,7 @@ int main(void)
         cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs),
         cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_presets),
+        cmocka_unit_test(test_set_cross_field),       cmocka_unit_test(test_bom_and_control_bytes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

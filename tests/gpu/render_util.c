@@ -43,7 +43,7 @@ int tr_render_again(tr_ctx *c)
     unsigned fbo;
     int w, h;
     c->be->frame(c->disp, &fbo, &w, &h);
-    cu_frame f = {fbo, w, h, c->linear};
+    cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = c->linear};
     if (cu_render(c->r, &f, &e)) {
         snprintf(c->err, sizeof c->err, "%s", e.msg);
         return 1;

@@ -76,10 +76,10 @@ static const ecase cases[] = {
     {"sun -90 deg", {"sun.elevation=-90"}},
     {"sun in front (Theta = 0)", {"sun.elevation=0", "sun.azimuth=180"}},
     {"sun behind (Theta = 180)", {"sun.elevation=0", "sun.azimuth=0"}},
-    {"camera at an ellipsoid centre", {"camera.position=0 250 0", "camera.look_at=0 250 100"}},
+    {"camera at an ellipsoid centre", {"camera.look_at=0 250 100", "camera.position=0 250 0"}},
     {"camera on the surface", {"camera.position=0 250 -160", "camera.look_at=0 250 0"}},
     {"camera on the surface looking out", {"camera.position=0 250 -160", "camera.look_at=0 250 -1000"}},
-    {"camera inside, looking up", {"camera.position=0 250 0", "camera.look_at=0 1000 0"}},
+    {"camera inside, looking up", {"camera.look_at=0 1000 0", "camera.position=0 250 0"}},
     {"camera looking straight down", {"camera.position=0 2000 0", "camera.look_at=0 0 0"}},
     {"tangent rays over the top", {"camera.position=0 370 -900", "camera.look_at=0 370 0"}},
     {"cloud 10 m away, 1 m radii",
@@ -98,7 +98,7 @@ static const ecase cases[] = {
     {"density 0", {"cloud.density=0"}},
     {"density 1e-3", {"cloud.density=1e-3"}},
     {"density 1e6", {"cloud.density=1e6"}},
-    {"density 1e6, camera inside", {"cloud.density=1e6", "camera.position=0 250 0"}},
+    {"density 1e6, camera inside", {"cloud.density=1e6", "camera.look_at=0 250 100", "camera.position=0 250 0"}},
     {"boundary 0", {"cloud.boundary=0"}},
     {"boundary larger than the radii", {"cloud.boundary=100000"}},
     {"boundary larger than the radii, kol profile", {"cloud.boundary=100000", "cloud.profile=kol"}},
@@ -141,7 +141,7 @@ static void test_64_ellipsoids_through_one_point(void **st)
                      250 + 30 * sin(1.7 * a), 60 * sin(a), 80 + (i % 5) * 10.0, 60 + (i % 3) * 15.0, 90.0);
     }
     free(render_checked(text, NULL, "64 ellipsoids through one point"));
-    static const char *const inside[] = {"camera.position=0 250 0", NULL};
+    static const char *const inside[] = {"camera.look_at=0 250 100", "camera.position=0 250 0", NULL};
     free(render_checked(text, inside, "64 ellipsoids, camera at the common point"));
     free(text);
 }

@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "renderer.h"
+#include "target.h"
 #include "render_util.h"
 
 #define W 160
@@ -120,11 +121,42 @@ static void test_half_float_only(void **st)
     assert_true(d.max_diff <= 2);
 }
 
+/* A target larger than the GPU allows fails before anything is allocated, naming the size and the limits, instead
+ * of as an incomplete framebuffer (status 0x8cd6) that does not say why. */
+static void test_target_over_limit(void **st)
+{
+    (void)st;
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, 8, 8, 0))
+        fail_msg("%s", c.err);
+    const cu_gl *gl = &c.r->gl;
+    GLint tex = 0, rb = 0, vp[2] = {0, 0};
+    gl->GetIntegerv(GL_MAX_TEXTURE_SIZE, &tex);
+    gl->GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &rb);
+    gl->GetIntegerv(GL_MAX_VIEWPORT_DIMS, vp);
+    int lim = tex < rb ? tex : rb;
+    lim = lim < vp[0] ? lim : vp[0];
+    cu_target t;
+    cu_error e;
+    cu_target_desc ok = {"small", 8, 8, GL_RGBA8, 1, 0, 1};
+    assert_int_equal(cu_target_create(&t, gl, &ok, &e), 0);
+    cu_target_delete(&t, gl);
+    cu_target_desc big = {"HDR target", lim + 1, 1, GL_RGBA8, 1, 0, 1};
+    assert_int_not_equal(cu_target_create(&t, gl, &big, &e), 0);
+    char want[300];
+    snprintf(want, sizeof want, "HDR target: framebuffer %dx1 exceeds this GPU's limit (GL_MAX_TEXTURE_SIZE %d, "
+             "GL_MAX_RENDERBUFFER_SIZE %d, GL_MAX_VIEWPORT_DIMS %dx%d)", lim + 1, tex, rb, vp[0], vp[1]);
+    assert_string_equal(e.msg, want);
+    assert_int_equal(gl->GetError(), GL_NO_ERROR);
+    tr_close(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_no_float_targets),
         cmocka_unit_test(test_half_float_only),
+        cmocka_unit_test(test_target_over_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

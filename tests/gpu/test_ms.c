@@ -137,7 +137,10 @@ static void test_collector_loader_rejects_bad_input(void **st)
         {"25 0 0 0 45 0 0 0 nan", "collector.txt:4: field 'sigma_m': expected a finite number"},
         {"25 0 0 0 45 0 0 0", "collector.txt:4: field 'sigma_m': expected a finite number"},
         {"25 0 0 0 45 0 0 0 0 0", "collector.txt:4: more than 9 fields"},
-        {"25 0 30 0 45 0 0 0 0", "collector.txt:4: value out of range"},
+        {"25 0 30 0 45 0 0 0 0", "collector.txt:4: field 'd_m': 30 is out of range [0, t_m = 25]"},
+        {"25 0 0 0 45 -0.5 0 0 0", "collector.txt:4: field 'C_ms': -0.5 is out of range [0, inf)"},
+        {"25 0 0 0 45 0 0 0 -1", "collector.txt:4: field 'sigma_m': -1 is out of range [0, inf)"},
+        {"25 0 0 0 200 0 0 0 0", "collector.txt:4: field 'phiV': 200 is out of range [0, 180]"},
         {"25 0 0 0 90 0 0 0 0", "collector.txt:5: duplicate cell"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)

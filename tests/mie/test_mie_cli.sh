@@ -41,6 +41,11 @@ t_expect dx-zero 2 "--dx" -- $BIN --dx 0
 t_expect poles-two 2 "--poles" -- $BIN --poles 2 --lambda 550
 t_expect positional 2 "stray: unexpected argument" -- $BIN stray
 t_expect unwritable-table 1 "cannot open" -- $BIN --table /nonexistent/dir/x.tbl --band 500,600,100 --dx 1 --reff 0.5 --veff 0.05
+mkdir -p build/test-output; ln -sf /dev/full build/test-output/mie_full.tbl
+t_expect table-onto-full-disk 1 "writing 'build/test-output/mie_full.tbl' failed" -- $BIN --table build/test-output/mie_full.tbl \
+  --band 500,600,100 --dx 1 --reff 0.5 --veff 0.05
+t_expect threads-overflow 2 "--threads" -- $BIN --threads 4294967297 --lambda 550
+t_expect threads-exponent 2 "--threads" -- $BIN --threads 2e0 --lambda 550
 
 # --- one sphere (VALIDATION.md: m = 1.33 - 1e-5 i, x = 100) ------------------------------------------------------
 out=$($BIN --m 1.33,1e-5 --x 100 --angles 0,30,90,180 2>&1)

@@ -312,7 +312,7 @@ static void test_furnace_mie_slab(void **state)
         c->env_up[i] = c->env_down[i] = 1;
     pt_rng r;
     pt_rng_seed(&r, 6, 0);
-    pt_counters k = {0, 0, 0, 0};
+    pt_counters k = {0};
     const int N = 100000;
     double s1[3] = {0}, s2[3] = {0};
     for (int i = 0; i < N; i++) {
@@ -350,7 +350,7 @@ static void slab_rt(pt_ctx *c, double tau, int n, int max_depth, double *R, doub
     c->max_depth = max_depth;
     pt_rng r;
     pt_rng_seed(&r, 42, (uint64_t)(tau * 1000));
-    pt_counters k = {0, 0, 0, 0};
+    pt_counters k = {0};
     double sr = 0, st = 0;
     for (int i = 0; i < n; i++) {
         double L[3];
@@ -432,7 +432,7 @@ static void test_slab_nee(void **state)
         c->sun_irr[0] = c->sun_irr[1] = c->sun_irr[2] = 1;
         pt_rng r;
         pt_rng_seed(&r, 3, (uint64_t)i);
-        pt_counters k = {0, 0, 0, 0};
+        pt_counters k = {0};
         double s = 0, s2 = 0;
         for (int j = 0; j < cases[i].n; j++) {
             double u = pt_rng_uniform(&r), phi = 2 * CU_PI * pt_rng_uniform(&r);
@@ -468,7 +468,7 @@ static void test_peak_mis(void **state)
         c->guide = g ? 1.0 : 0.0;
         pt_rng r;
         pt_rng_seed(&r, 8, (uint64_t)g);
-        pt_counters k = {0, 0, 0, 0};
+        pt_counters k = {0};
         double s = 0, s2 = 0;
         for (int j = 0; j < n[g]; j++) {
             double L[3];

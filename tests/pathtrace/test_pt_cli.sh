@@ -45,7 +45,7 @@ t_expect "binary garbage" 1 "not a text file" -- $P "$T/garbage.scene" -o "$T/x.
 t_expect "empty scene" 1 "empty scene file" -- $P "$T/empty.scene" -o "$T/x.pfm"
 t_expect "missing scene" 1 "nope.scene: cannot open" -- $P nope.scene -o "$T/x.pfm"
 t_expect "bad --set key" 1 "unknown key 'cloud.colour'" -- $P $S -o "$T/x.pfm" --set cloud.colour=1
-t_expect "bad --set value" 1 "'radii' must be positive, got -5" -- $P $S -o "$T/x.pfm" --set "ellipsoid.1.radii=1 -5 1"
+t_expect "bad --set value" 1 "'radii' must be in [0.1, 100000] m, got -5" -- $P $S -o "$T/x.pfm" --set "ellipsoid.1.radii=1 -5 1"
 t_expect "unwritable output" 1 "/nonexistent/x.pfm" -- $P $S -o /nonexistent/x.pfm --size 2x2 --spp 1 --quiet
 t_expect "unwritable dump" 1 "cannot write density grid" -- $P $S --dump-density /nonexistent/d.raw --grid 2,2,2
 t_expect "no arguments" 2 "usage: cumulo-pt" -- $P
@@ -70,6 +70,22 @@ t_expect "grid alone" 2 "--grid only applies" -- $P $S -o "$T/x.pfm" --grid 2,2,
 t_expect "bad peak-mis" 2 "--peak-mis expects" -- $P $S -o "$T/x.pfm" --peak-mis 1.5
 t_expect "not a PFM" 2 "must end in .pfm" -- $P $S -o "$T/x.png"
 t_expect "missing -o value" 2 "-o needs a value" -- $P $S -o
-t_help_version cumulo-pt $P -o --spp --threads --seed --size --set --max-depth --aa --mode --peak-mis --dump-density \
-  --grid --quiet --help --version
+# Integers that overflow an int are errors, not wrapped (sscanf's %d made 4294967360x48 into 64x48).
+t_expect "size overflow" 2 "--size expects" -- $P $S -o "$T/x.pfm" --size 4294967360x48
+t_expect "size sign" 2 "--size expects" -- $P $S -o "$T/x.pfm" --size 8x-8
+t_expect "grid overflow" 2 "--grid expects" -- $P $S --dump-density "$T/x.raw" --grid 4294967297,1,1
+# A full disk is an error for every file written (/dev/full fails every write with ENOSPC).
+ln -sf /dev/full "$T/full.pfm"; ln -sf /dev/full "$T/dfull.raw.txt"
+t_expect "PFM onto a full disk" 1 "write failed" -- $P $S -o "$T/full.pfm" --size 2x2 --spp 1 --quiet
+t_expect "density header onto a full disk" 1 "dfull.raw.txt: write failed" -- $P $S --dump-density "$T/dfull.raw" --grid 2,2,2
+t_expect "max steps zero" 2 "--max-steps expects" -- $P $S -o "$T/x.pfm" --max-steps 0
+# The legal extreme of optical thickness (radii 1e5 m, k_e 6e7 m^-1) at 8x8, 1 spp: every path is cut at the default
+# step bound and the warning counts them; a minute's timeout stands for "never loops".
+if timeout 60 $P $S -o "$T/ext.pfm" --size 8x8 --spp 1 --threads 2 -q --set ellipsoid.1.radii=1e5,1e5,1e5 \
+     --set cloud.density=1e7 --set cloud.droplet_radius=1000 2>"$T/ext.err" >/dev/null &&
+   grep -q "warning: 64 of 64 paths cut at --max-steps 100000" "$T/ext.err"; then
+  t_ok "extreme optical thickness: finishes, cut paths reported"
+else t_fail "extreme optical thickness: finishes, cut paths reported" "$(cat "$T/ext.err")"; fi
+t_help_version cumulo-pt $P -o --spp --threads --seed --size --set --max-depth --max-steps --aa --mode --peak-mis \
+  --dump-density --grid --quiet --help --version
 t_summary

@@ -69,6 +69,10 @@ static void test_parse_bad(void **state)
     expect_bad("gpio:a=17,b=27,steps=3", "'steps'");
     expect_bad("gpio:a=17,b=27,steps=x", "'steps'");
     expect_bad("gpio:a=17,b=27,debounce=-5", "'debounce'");
+    /* numbers are digits only: strtol would take a sign or leading blanks, and wrap nothing past its range */
+    expect_bad("gpio:a=17,b=27,steps=+4", "'steps'");
+    expect_bad("gpio:a=17,b=27,debounce= 5", "'debounce'");
+    expect_bad("gpio:a=17,b=27,debounce=99999999999999999999", "'debounce'");
     expect_bad("gpio:a=17,b=27,chip=aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa"
                "aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa", "longer than");
     expect_bad("evdev:", "give a device path");
@@ -78,6 +82,9 @@ static void test_parse_bad(void **state)
     expect_bad("gpio", "unknown input kind");
     assert_int_equal(cu_input_line_offset("-1"), -1);
     assert_int_equal(cu_input_line_offset("17x"), -1);
+    assert_int_equal(cu_input_line_offset("\t17"), -1);
+    assert_int_equal(cu_input_line_offset("18446744073709551633"), -1);
+    assert_int_equal(cu_input_line_offset("65535"), 65535);
     assert_int_equal(cu_input_line_offset(""), -1);
 }
 
@@ -134,6 +141,20 @@ static void test_stdin_commands(void **state)
         if (cu_stdin_parse(bad[i], &a, err, sizeof err) == 0)
             fail_msg("'%s' was accepted", bad[i]);
         assert_non_null(strstr(err, "stdin:"));
+    }
+    /* what a line echoes back is escaped: an ESC or BEL from stdin must not reach the terminal that shows the log */
+    static const char *const hostile[][2] = {
+        { "dance\x1b[2J", "'dance\\x1b[2J'" }, { "sun \x1b]0;x\x07 10", "'\\x1b]0;x\\x07'" },
+        { "el\x1b", "'el\\x1b'" }, { "quit \x7f", "'quit'" },
+    };
+    for (size_t i = 0; i < sizeof hostile / sizeof hostile[0]; i++) {
+        err[0] = '\0';
+        assert_int_not_equal(cu_stdin_parse(hostile[i][0], &a, err, sizeof err), 0);
+        for (const char *p = err; *p; p++)
+            if ((unsigned char)*p < 32 || *p == 127)
+                fail_msg("case %zu: raw byte 0x%02x in '%s'", i, (unsigned char)*p, err);
+        if (!strstr(err, hostile[i][1]))
+            fail_msg("case %zu: '%s' lacks %s", i, err, hostile[i][1]);
     }
 }
 

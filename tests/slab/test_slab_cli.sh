@@ -38,6 +38,13 @@ t_expect missing_value 2 "--tau needs a value" -- $S --tau
 t_expect stray_argument 2 "unexpected argument 'stray'" -- $S --tau 1 stray
 t_expect unwritable_out 1 "cannot write '/nonexistent/C.txt'" -- $S --tau 1 --photons 100 --report table --depths 2 \
   --out /nonexistent/C.txt --quiet
+mkdir -p build/test-output; ln -sf /dev/full build/test-output/slab_full.txt
+t_expect table_onto_full_disk 1 "build/test-output/slab_full.txt" -- $S --tau 1 --photons 100 --report table --depths 2 \
+  --out build/test-output/slab_full.txt --quiet
+t_expect threads_overflow 2 "--threads" -- $S --tau 1 --threads 4294967297
+t_expect seed_not_exact 2 "--seed" -- $S --tau 1 --seed 9007199254740993.5
+t_expect depths_overflow 2 "--depths" -- $S --tau 1 --depths 4294967297
+t_expect sphere_seed_not_exact 2 "--seed" -- build/cumulo-slab-sphere --diameter 100 --seed 9007199254740993.5
 
 # --help describes every option on stdout and --version names the release, for the three slab programs
 t_help_version cumulo-slab $S --tau --thickness --ke --mu0 --phase --photons --threads --seed --batches --report \

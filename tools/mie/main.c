@@ -3,6 +3,7 @@
 #include "mietable.h"
 #include "version.h"
 #include "water.h"
+#include "../tool_cli.h"
 
 #include <errno.h>
 #include <getopt.h>
@@ -199,13 +200,10 @@ int main(int argc, char **argv)
                 return bad("--band", "HI - LO must be a multiple of STEP", v);
             have_band = 1;
             break;
-        case O_THREADS: {
-            double th;
-            if (num(v, 1.0, 8.0, &th) || th != floor(th))
+        case O_THREADS:
+            if (tool_parse_int(v, 1, 8, &p.threads))
                 return bad("--threads", "expected an integer 1-8", v);
-            p.threads = (int)th;
             break;
-        }
         }
     }
     if (optind < argc)
@@ -279,7 +277,7 @@ int main(int argc, char **argv)
             return 1;
         }
         int wrc = mt_write_table(out, &r, ang.theta_deg, cmd, &p);
-        if (out != stdout && fclose(out) != 0)
+        if (tool_close_output(out))
             wrc = -1;
         if (wrc != 0)
             fprintf(stderr, "cumulo-mie: writing '%s' failed\n", table);

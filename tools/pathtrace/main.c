@@ -3,6 +3,7 @@
 #include "image.h"
 #include "pt.h"
 #include "version.h"
+#include "../tool_cli.h"
 #include <errno.h>
 #include <getopt.h>
 #include <stdarg.h>
@@ -31,6 +32,8 @@ static const char usage[] =
     "  --size WxH               image size, 1..16384 each (default: the scene's [output] size)\n"
     "  --set section.key=value  override a scene key, as cumulo --set does (at most 64)\n"
     "  --max-depth N            scattering events per path before it is cut, 0..1000000000 (default 1000000)\n"
+    "  --max-steps N            tracking steps per path (collisions, null collisions, shadow rays) before it\n"
+    "                           is cut, 1..1000000000000 (default 100000); cut paths are counted and reported\n"
     "  --aa                     jitter inside each pixel (box filter) instead of the pixel centre\n"
     "  --mode M                 radiance (default) or transmittance, exp(-tau) along each camera ray\n"
     "  --peak-mis P             probability per scattering event of the forward-peak sun strategy, [0, 1]\n"
@@ -45,15 +48,7 @@ static const char usage[] =
 /* Whole-string unsigned integer in [lo, hi]; 0 on success. */
 static int parse_u64(const char *s, unsigned long long lo, unsigned long long hi, unsigned long long *out)
 {
-    if (!s || !*s || *s == '-' || *s == '+' || *s == ' ')
-        return 1;
-    char *end;
-    errno = 0;
-    unsigned long long v = strtoull(s, &end, 10);
-    if (errno || *end || v < lo || v > hi)
-        return 1;
-    *out = v;
-    return 0;
+    return tool_parse_uints(s, 0, 1, lo, hi, out);
 }
 
 static int ends_with(const char *s, const char *suffix)
@@ -79,11 +74,11 @@ int main(int argc, char **argv)
 {
     const char *scene_path = NULL, *out = NULL, *dump = NULL, *sets[MAX_SETS];
     int nsets = 0, quiet = 0, aa = 0, width = 0, height = 0, grid[3] = {128, 128, 128}, have_grid = 0;
-    unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0;
+    unsigned long long spp = 16, seed = 1, max_depth = 1000000, threads = 0, max_steps = PT_MAX_STEPS;
     pt_mode mode = PT_MODE_RADIANCE;
     double peak_mis = PT_GUIDE_DEFAULT;
     enum { O_SPP = 256, O_THREADS, O_SEED, O_SIZE, O_SET, O_MAX_DEPTH, O_MODE, O_PEAK_MIS, O_DUMP, O_GRID, O_AA,
-           O_VERSION };
+           O_VERSION, O_MAX_STEPS };
     static const struct option opts[] = {
         {"spp", required_argument, NULL, O_SPP},           {"threads", required_argument, NULL, O_THREADS},
         {"seed", required_argument, NULL, O_SEED},         {"size", required_argument, NULL, O_SIZE},
@@ -92,11 +87,13 @@ int main(int argc, char **argv)
         {"dump-density", required_argument, NULL, O_DUMP}, {"grid", required_argument, NULL, O_GRID},
         {"aa", no_argument, NULL, O_AA},                   {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},                  {"version", no_argument, NULL, O_VERSION},
+        {"max-steps", required_argument, NULL, O_MAX_STEPS},
         {NULL, 0, NULL, 0}};
     opterr = 0;
     for (int o; (o = getopt_long(argc, argv, ":o:qh", opts, NULL)) != -1;) {
         const char *v = optarg;
-        char tail, *end;
+        char *end;
+        unsigned long long wh[2], g3[3];
         switch (o) {
         case 'h':
             fputs(usage, stdout);
@@ -127,10 +124,15 @@ int main(int argc, char **argv)
             if (parse_u64(v, 0, 1000000000, &max_depth))
                 return bad("--max-depth expects a count from 0 to 1000000000, got '%s'", v);
             break;
+        case O_MAX_STEPS:
+            if (parse_u64(v, 1, 1000000000000ull, &max_steps))
+                return bad("--max-steps expects a count from 1 to 1000000000000, got '%s'", v);
+            break;
         case O_SIZE:
-            if (sscanf(v, "%dx%d%c", &width, &height, &tail) != 2 || width < 1 || height < 1 || width > 16384 ||
-                height > 16384)
+            if (tool_parse_uints(v, 'x', 2, 1, 16384, wh))
                 return bad("--size expects WxH with 1..16384, got '%s'", v);
+            width = (int)wh[0];
+            height = (int)wh[1];
             break;
         case O_SET:
             if (nsets == MAX_SETS)
@@ -155,10 +157,10 @@ int main(int argc, char **argv)
             dump = v;
             break;
         case O_GRID:
-            if (sscanf(v, "%d,%d,%d%c", &grid[0], &grid[1], &grid[2], &tail) != 3 || grid[0] < 1 || grid[1] < 1 ||
-                grid[2] < 1 || grid[0] > 4096 || grid[1] > 4096 || grid[2] > 4096 ||
-                (double)grid[0] * grid[1] * grid[2] > 1073741824.0)
+            if (tool_parse_uints(v, ',', 3, 1, 4096, g3) || g3[0] * g3[1] * g3[2] > 1073741824ull)
                 return bad("--grid expects NX,NY,NZ with 1..4096 each and at most 2^30 voxels, got '%s'", v);
+            for (int i = 0; i < 3; i++)
+                grid[i] = (int)g3[i];
             have_grid = 1;
             break;
         case 'q':
@@ -211,6 +213,7 @@ int main(int argc, char **argv)
         return 1;
     }
     c->max_depth = (int)max_depth;
+    c->max_steps = max_steps;
     c->guide = peak_mis;
     int rc = 0;
     if (dump) {
@@ -255,6 +258,10 @@ int main(int argc, char **argv)
                    out, sp, s->width, s->height, spp, seed, threads, secs,
                    k.paths ? (double)k.scatters / k.paths : 0.0, k.paths ? (double)k.density_evals / k.paths : 0.0,
                    (unsigned long long)k.truncated, (unsigned long long)k.paths, max_depth);
+            if (k.step_capped) /* a cut path is biased low: say so even with -q */
+                fprintf(stderr, "cumulo-pt: warning: %llu of %llu paths cut at --max-steps %llu (the image is biased "
+                        "dark where they were)\n", (unsigned long long)k.step_capped, (unsigned long long)k.paths,
+                        max_steps);
             if (spp < 2)
                 fprintf(stderr, "cumulo-pt: warning: 1 sample per pixel gives no error estimate (%s is zero)\n", sp);
         }

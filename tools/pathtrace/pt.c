@@ -27,16 +27,24 @@ static inline double free_path(pt_rng *r, double m) { return -log(1.0 - pt_rng_u
 int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err)
 {
     memset(c, 0, sizeof *c);
-    c->scene = *s;
     if (cu_noise_create(&c->noise, PT_NOISE_SEED))
         return cu_fail(err, "%s", "path tracer: cannot create the noise texture (out of memory)");
-    if (cu_phase_table_build(&c->table, &c->scene, data_dir, err)) {
+    if (pt_ctx_set_scene(c, s, data_dir, err)) {
         cu_noise_destroy(&c->noise);
         return 1;
     }
+    return 0;
+}
+
+int pt_ctx_set_scene(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err)
+{
+    pt_phase_free(&c->phase);
+    cu_phase_table_free(&c->table);
+    c->scene = *s;
+    if (cu_phase_table_build(&c->table, &c->scene, data_dir, err))
+        return 1;
     if (pt_phase_init(&c->phase, &c->table, err)) {
         cu_phase_table_free(&c->table);
-        cu_noise_destroy(&c->noise);
         return 1;
     }
     cu_cloud_build(&c->cloud, &c->scene, &c->noise);
@@ -49,6 +57,7 @@ int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *er
         c->sun_irr[i] = c->sky.sun_irradiance[i];
     c->env = PT_ENV_SCENE;
     c->max_depth = 1000000;
+    c->max_steps = PT_MAX_STEPS;
     c->guide = PT_GUIDE_DEFAULT;
     c->cam = v3_sub(v3_from(s->cam_pos), c->cloud.origin);
     vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
@@ -132,7 +141,14 @@ static int intervals(const pt_ctx *c, vec3 o, vec3 d, double iv[][2])
     return m;
 }
 
-/* Delta (Woodcock) tracking: returns 1 and the position of the first real collision, 0 if the ray escapes. */
+/* One more tracking step of the current path; 0 once the path has used up max_steps (it is then cut). */
+static int step(const pt_ctx *c, pt_counters *k)
+{
+    return ++k->path_steps <= c->max_steps;
+}
+
+/* Delta (Woodcock) tracking: returns 1 and the position of the first real collision, 0 if the ray escapes, -1 if
+ * the path ran out of steps. */
 static int track(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, vec3 *hit, pt_counters *k)
 {
     if (!(c->majorant > 0))
@@ -144,8 +160,10 @@ static int track(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, vec3 *hit, pt_cou
         double t = iv[i][0];
         for (;;) {
             t += free_path(rng, c->majorant);
-            if (t >= iv[i][1])
+            if (!(t < iv[i][1])) /* also ends a NaN interval, which cu_ray_ellipsoid no longer makes */
                 break;
+            if (!step(c, k))
+                return -1;
             vec3 p = v3_add(o, v3_scale(d, t));
             double ke = pt_extinction(c, p);
             k->density_evals++;
@@ -158,7 +176,8 @@ static int track(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, vec3 *hit, pt_cou
     return 0;
 }
 
-double pt_transmittance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, pt_counters *k)
+/* Ratio tracking to infinity; -1 if the path ran out of steps. */
+static double transmittance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, pt_counters *k)
 {
     if (!(c->majorant > 0))
         return 1.0;
@@ -169,8 +188,10 @@ double pt_transmittance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, pt_counter
         double t = iv[i][0];
         for (;;) {
             t += free_path(rng, c->majorant);
-            if (t >= iv[i][1])
+            if (!(t < iv[i][1]))
                 break;
+            if (!step(c, k))
+                return -1.0;
             double ke = pt_extinction(c, v3_add(o, v3_scale(d, t)));
             k->density_evals++;
             T *= 1.0 - ke / c->majorant; /* ratio tracking (Novak et al. 2014) */
@@ -184,6 +205,15 @@ double pt_transmittance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, pt_counter
         }
     }
     return T;
+}
+
+double pt_transmittance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, pt_counters *k)
+{
+    k->path_steps = 0;
+    double T = transmittance(c, o, d, rng, k);
+    if (T < 0)
+        k->step_capped++;
+    return T < 0 ? 0.0 : T;
 }
 
 /* Radiance of the environment seen along d; the sun disk only for rays from the camera (scattered paths see the
@@ -241,9 +271,9 @@ static void peak_nee(const pt_ctx *c, vec3 p, vec3 d, const double R[3], pt_rng 
     double pa[3];
     pt_phase_eval_dirs(ph, d, d2, pa);
     vec3 p2;
-    if (!(qb > 0) || !track(c, p, d2, rng, &p2, k))
-        return;
-    double T = pt_transmittance(c, p2, c->sun_dir, rng, k);
+    if (!(qb > 0) || track(c, p, d2, rng, &p2, k) != 1)
+        return; /* a miss, or out of steps (pt_radiance sees that and cuts the path) */
+    double T = transmittance(c, p2, c->sun_dir, rng, k);
     if (!(T > 0))
         return;
     double ps[3];
@@ -269,9 +299,15 @@ void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_c
     }
     double nee_w = 1.0; /* MIS weight of this vertex's sun NEE against strategy B; 1 for the camera ray */
     k->paths++;
+    k->path_steps = 0;
     for (int depth = 0;; depth++) {
         vec3 p;
-        if (!track(c, o, d, rng, &p, k)) {
+        int hit = track(c, o, d, rng, &p, k);
+        if (hit < 0 || k->path_steps > c->max_steps) { /* out of steps: cut, as at max_depth (biased low) */
+            k->step_capped++;
+            return;
+        }
+        if (!hit) {
             double e[3];
             environment(c, d, depth == 0, e);
             for (int i = 0; i < 3; i++)
@@ -288,7 +324,7 @@ void pt_radiance(const pt_ctx *c, vec3 o, vec3 d, pt_rng *rng, double L[3], pt_c
              * previous vertex), so cos(theta) = (-sun_dir).(-d) = sun_dir.d (DESIGN: cos = s_L . v). */
             double ph3[3];
             pt_phase_eval_dirs(ph, c->sun_dir, d, ph3);
-            double T = pt_transmittance(c, p, c->sun_dir, rng, k);
+            double T = transmittance(c, p, c->sun_dir, rng, k);
             if (T > 0)
                 for (int i = 0; i < 3; i++)
                     L[i] += nee_w * beta[i] * ph3[i] * c->sun_irr[i] * T;

@@ -75,6 +75,8 @@ typedef struct pt_ctx {
     pt_env env;
     double env_up[3], env_down[3]; /* PT_ENV_HEMISPHERES: radiance for dir.y > 0 and dir.y <= 0 */
     int max_depth;            /* scattering events per path; a path reaching it is cut (counted, biased low) */
+    uint64_t max_steps;       /* tracking steps (real and null collisions, shadow rays included) per path: a path
+                                 reaching it is cut and counted, so no scene can keep a path going forever */
     double guide;             /* probability per vertex of the extra forward-peak sun estimate (Mie + sun; 0 = off) */
     /* Camera, cloud-local. */
     vec3 cam;
@@ -84,10 +86,20 @@ typedef struct pt_ctx {
 
 typedef struct pt_counters {
     uint64_t paths, scatters, truncated, density_evals;
+    uint64_t step_capped; /* paths cut at max_steps */
+    uint64_t path_steps;  /* steps of the path being traced (pt_radiance and pt_transmittance reset it) */
 } pt_counters;
+/* Default of pt_ctx.max_steps. A path diffusing through optical thickness tau takes ~tau^2 scattering events, each
+ * with a shadow ray of a few steps (ratio tracking's roulette): 1e5 covers tau ~ 150 along a whole random walk,
+ * beyond which what a path carries is tiny, and bounds the legal extremes (radii 1e5 m, k_e 6e7 m^-1: tau 1e13,
+ * where every step is a collision) at 1e5 extinction lookups per path. */
+#define PT_MAX_STEPS 100000
 
 /* Builds everything from a scene (data_dir holds mie_cloud.tbl). Returns 0, or 1 with a message. */
 int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err);
+/* Rebuilds c (from pt_ctx_init) for scene s, keeping its noise texture (the costly part, the same for every scene);
+ * the integrator's settings return to their defaults. Returns 0, or 1 with a message (c then needs pt_ctx_free). */
+int pt_ctx_set_scene(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err);
 void pt_ctx_free(pt_ctx *c);
 /* Test hook: replace the cloud by a slab of optical thickness tau (thickness 1000 m, top at local y = 0). */
 void pt_ctx_use_slab(pt_ctx *c, double tau);

@@ -2,6 +2,7 @@
  * stderr, mean and standard error per pixel) and the density dump for comparisons with the renderer's CPU twin. */
 #include "pt.h"
 #include "error.h"
+#include "../tool_cli.h"
 #include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -86,7 +87,7 @@ static void render_row(job *j, int y, pt_counters *k)
 static void *worker(void *arg)
 {
     job *j = arg;
-    pt_counters k = {0, 0, 0, 0};
+    pt_counters k = {0};
     for (;;) {
         pthread_mutex_lock(&j->lock);
         int y = j->next_row < j->o->height ? j->next_row++ : -1;
@@ -105,6 +106,7 @@ static void *worker(void *arg)
     j->total.scatters += k.scatters;
     j->total.truncated += k.truncated;
     j->total.density_evals += k.density_evals;
+    j->total.step_capped += k.step_capped;
     pthread_mutex_unlock(&j->lock);
     return NULL;
 }
@@ -195,7 +197,7 @@ int pt_dump_density(const pt_ctx *c, const char *path, int nx, int ny, int nz, u
             ok = fwrite(row, 4, (size_t)nx, fp) == (size_t)nx;
         }
     free(row);
-    if (fclose(fp) != 0 || !ok) {
+    if (tool_close_output(fp) || !ok) {
         snprintf(err->msg, sizeof err->msg, "%s: write failed", path);
         return 1;
     }
@@ -222,7 +224,8 @@ int pt_dump_density(const pt_ctx *c, const char *path, int nx, int ny, int nz, u
     fprintf(fp, "cloud_origin_m %.9g %.9g %.9g\n", cl->origin.x, cl->origin.y, cl->origin.z);
     fprintf(fp, "boundary_m %.9g\nnoise %s\nnoise_scale %.9g\nnoise_octaves %d\nprofile %s\n", cl->h,
             cl->noise_on ? "on" : "off", s->noise_scale, cl->octaves, cl->profile == CU_PROFILE_KOL ? "kol" : "tapered");
-    fclose(fp);
+    if (tool_close_output(fp))
+        return cu_fail(err, "%.400s: write failed", hp);
     return 0;
 }
 

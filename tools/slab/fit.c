@@ -1,6 +1,7 @@
 /* cumulo-slab-fit: fits eq. 3.32 (and a log-separable alternative) to cumulo-slab tables, reports fit errors per group. */
 #include "fitlib.h"
 #include "version.h"
+#include "../tool_cli.h"
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -167,8 +168,8 @@ int main(int argc, char **argv)
             }
             printf("\n");
         }
-        if (fo) fclose(fo);
-        if (fpred) fclose(fpred);
+        if (fo && tool_close_output(fo)) die(1, "writing the output table failed", out);
+        if (fpred && tool_close_output(fpred)) die(1, "writing the prediction file failed", predict);
     }
     free(err); free(all); free(allh); free(use); free(cells);
     return 0;

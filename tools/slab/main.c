@@ -1,6 +1,7 @@
 /* cumulo-slab: command-line front end of the slab Monte Carlo (totals, radiance, orders, interior BSDF tables). */
 #include "slab.h"
 #include "version.h"
+#include "../tool_cli.h"
 #include <errno.h>
 #include <getopt.h>
 #include <math.h>
@@ -119,7 +120,7 @@ int main(int argc, char **argv)
     double tau = 0, thick = 0, ke = 0.0905, mu0 = 1.0, photons = 1e5;
     const char *phase = "hg:0.85", *report = "totals", *out = NULL;
     int threads = 2, batches = 100, quiet = 0, nd = 11, have_tau = 0, have_thick = 0;
-    double seed = 1;
+    unsigned long long seed = 1;
     c.phi_deg = -1;
     /* default table grid: theta_V avoids 90 deg where the interior point estimator has no finite variance */
     double thv[] = { 0, 20, 40, 60, 80, 100, 120, 140, 160, 180 }, phv[] = { 0, 45, 90, 135, 180 };
@@ -153,13 +154,21 @@ int main(int argc, char **argv)
         case O_MU0: mu0 = num("--mu0", v); break;
         case O_PHASE: phase = v; break;
         case O_PHOTONS: photons = num("--photons", v); break;
-        case O_THREADS: threads = (int)num("--threads", v); break;
-        case O_SEED: seed = num("--seed", v); break;
-        case O_BATCHES: batches = (int)num("--batches", v); break;
+        case O_THREADS:
+            if (tool_parse_int(v, 1, 256, &threads)) die("--threads must be in 1..256, got '%s'", v);
+            break;
+        case O_SEED:
+            if (tool_parse_uints(v, 0, 1, 0, UINT64_MAX, &seed)) die("--seed must be a non-negative 64-bit integer, got '%s'", v);
+            break;
+        case O_BATCHES:
+            if (tool_parse_int(v, 2, 100000, &batches)) die("--batches must be in 2..100000, got '%s'", v);
+            break;
         case O_REPORT: report = v; break;
         case O_MU: c.nmu = list("--mu", v, c.mu, CU_MAXMU); break;
         case O_PHI: c.phi_deg = num("--phi", v); break;
-        case O_DEPTHS: nd = (int)num("--depths", v); break;
+        case O_DEPTHS:
+            if (tool_parse_int(v, 1, CU_MAXGRID, &nd)) die("--depths must be in 1..%d, got '%s'", CU_MAXGRID, v);
+            break;
         case O_THETAV: c.nv = list("--thetav", v, c.thv_deg, CU_MAXGRID); break;
         case O_PHIV: c.nphi = list("--phiv", v, c.phv_deg, CU_MAXGRID); break;
         case O_OUT: out = v; break;
@@ -186,9 +195,6 @@ int main(int argc, char **argv)
     if (!(tau > 0) || tau > 1e4) die("optical thickness must be in (0, 1e4], got %g", tau);
     if (!(mu0 > 0 && mu0 <= 1)) die("--mu0 must be in (0, 1], got %g", mu0);
     if (!(photons >= 1 && photons <= 1e13) || photons != floor(photons)) die("--photons must be a positive integer");
-    if (threads < 1 || threads > 256) die("--threads must be in 1..256");
-    if (batches < 2 || batches > 100000) die("--batches must be in 2..100000");
-    if (seed < 0 || seed != floor(seed) || seed > 1.8e19) die("--seed must be a non-negative integer");
     if (want_rad && c.nmu == 0) die("--report radiance needs --mu");
     for (int j = 0; j < c.nmu; j++)
         if (!(c.mu[j] > 0 && c.mu[j] <= 1)) die("--mu values must be in (0, 1], got %g", c.mu[j]);
@@ -303,7 +309,7 @@ int main(int argc, char **argv)
                                 c.d_tau[jd] * mpt, c.thv_deg[iv], c.phv_deg[ip], thl, st.C, st.C_se, st.cx, st.cx_se,
                                 st.cz, st.cz_se, st.sigma, st.sigma_se);
                     }
-        if (fo != stdout) fclose(fo);
+        if (tool_close_output(fo)) fail("writing '%s' failed", out ? out : "stdout");
     }
     cu_slab_result_free(&r);
     cu_phase_free(&ph);

@@ -11,6 +11,7 @@
 #include "rng.h"
 #include "slab.h"
 #include "version.h"
+#include "../tool_cli.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -73,7 +74,6 @@ int main(int argc, char **argv)
         {"phase", required_argument, NULL, O_PHASE},       {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, O_VERSION},         {NULL, 0, NULL, 0}};
     opterr = 0;
-    double s;
     for (int o; (o = getopt_long(argc, argv, ":h", opts, NULL)) != -1;) {
         const char *a = argv[optind - 1];
         switch (o) {
@@ -89,10 +89,8 @@ int main(int argc, char **argv)
         case O_KE: ke = num("--ke", optarg); break;
         case O_PHOTONS: photons = num("--photons", optarg); break;
         case O_SEED:
-            s = num("--seed", optarg);
-            if (!(s >= 0 && s <= 1.8e19) || s != floor(s))
-                die(2, "--seed", "must be a non-negative integer");
-            seed = (unsigned long long)s;
+            if (tool_parse_uints(optarg, 0, 1, 0, UINT64_MAX, &seed))
+                die(2, "--seed", "must be a non-negative 64-bit integer");
             break;
         case O_PHASE: phase = optarg; break;
         }

@@ -56,7 +56,7 @@ static int make_renderer(cli_session *s, const cu_scene *sc, cu_renderer **out)
 static int render_with(cli_session *s, cu_renderer *r, int w, int h)
 {
     cu_error e;
-    cu_frame f = {s->fbo, w, h, s->linear};
+    cu_frame f = {.fbo = s->fbo, .width = w, .height = h, .linear = s->linear};
     if (cu_render(r, &f, &e)) {
         fprintf(stderr, "cumulo-sweep: %s\n", e.msg);
         return 1;

@@ -2,6 +2,7 @@
  * line on stderr and give exit status 2; --help and --version print on stdout and give 0. */
 #include "sweep.h"
 #include "version.h"
+#include "../tool_cli.h"
 #include <getopt.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -73,17 +74,11 @@ static int bad(const char *fmt, ...)
 
 static int parse_size(const char *v, int *w, int *h)
 {
-    char tail;
-    return sscanf(v, "%dx%d%c", w, h, &tail) == 2 && *w >= 1 && *h >= 1 && *w <= 4096 && *h <= 4096 ? 0 : -1;
-}
-
-static int parse_int(const char *v, int lo, int hi, int *out)
-{
-    char *end;
-    long x = strtol(v, &end, 10);
-    if (!*v || *end || x < lo || x > hi)
+    unsigned long long wh[2];
+    if (tool_parse_uints(v, 'x', 2, 1, 4096, wh))
         return -1;
-    *out = (int)x;
+    *w = (int)wh[0];
+    *h = (int)wh[1];
     return 0;
 }
 
@@ -190,25 +185,25 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
             set_tsize = 1;
             break;
         case O_SPP:
-            if (parse_int(v, 1, 1000000, &sw->spp))
+            if (tool_parse_int(v, 1, 1000000, &sw->spp))
                 return bad("--spp expects a count from 1 to 1000000, got '%s'", v);
             set_spp = 1;
             break;
         case O_PTTHREADS:
-            if (parse_int(v, 1, 256, &sw->pt_threads))
+            if (tool_parse_int(v, 1, 256, &sw->pt_threads))
                 return bad("--ref-threads expects a count from 1 to 256, got '%s'", v);
             break;
         case O_FRAMES:
-            if (parse_int(v, 1, 10000, &sw->frames))
+            if (tool_parse_int(v, 1, 10000, &sw->frames))
                 return bad("--frames expects a count from 1 to 10000, got '%s'", v);
             set_frames = 1;
             break;
         case O_WARMUP:
-            if (parse_int(v, 0, 10000, &sw->warmup))
+            if (tool_parse_int(v, 0, 10000, &sw->warmup))
                 return bad("--warmup expects a count from 0 to 10000, got '%s'", v);
             break;
         case O_THRESHOLD:
-            if (parse_int(v, 0, 255, &sw->threshold))
+            if (tool_parse_int(v, 0, 255, &sw->threshold))
                 return bad("--threshold expects 8-bit levels from 0 to 255, got '%s'", v);
             break;
         case O_BUDGETS: {
