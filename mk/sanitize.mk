@@ -31,8 +31,11 @@ sanitize:
 	   xargs -0 tar -cf - --no-recursion; else tar --exclude=./build -cf - .; fi | tar -C $(SAN_TREE) -xf -
 	@start=$$(date +%s); $(MAKE) -C $(SAN_TREE) --no-print-directory SANITIZE=1 check; rc=$$?; \
 	  echo "sanitize: $$(( $$(date +%s) - start )) s"; exit $$rc
+# tests/gpu/test_host_scene.sh is left out too: examples/host_scene opens its EGL display itself, as a host does, so
+# cu_egl_keep_driver cannot keep Mesa's driver loaded there and the driver's 112-byte unload leak comes back from an
+# "<unknown module>" that no suppression can name.
 ifeq ($(SANITIZE),1)
-CHECK_TESTS_RUN = $(filter-out tests/build/test_build.sh,$(CHECK_TESTS))
+CHECK_TESTS_RUN = $(filter-out tests/build/test_build.sh tests/gpu/test_host_scene.sh,$(CHECK_TESTS))
 else
 CHECK_TESTS_RUN = $(CHECK_TESTS)
 endif
