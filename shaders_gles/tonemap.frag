@@ -22,9 +22,13 @@ void main()
 #else
     // Composited, the clouds' own radiance (premultiplied / coverage) is tone-mapped like the sky would be, then
     // weighted by its coverage: the host's picture shows through where the cloud is thin.
-    float a = u_composite ? c.a : 1.0;
-    vec3 x = max(c.rgb / a * u_exposure / u_white, vec3(0.0));
+    float a = c.a;
+    if (u_composite)
+        c.rgb /= a;
+    vec3 x = max(c.rgb * u_exposure / u_white, vec3(0.0));
     vec3 t = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    o_color = vec4(srgb(t) * a, a);
+    o_color = vec4(srgb(t), 1.0);
+    if (u_composite)
+        o_color *= a;
 #endif
 }
