@@ -64,7 +64,8 @@ uniform vec3 u_sky_rad;        // mean radiance of the sky (upper hemisphere)
 uniform vec3 u_ground_rad;     // radiance of the ground (lower hemisphere; the sky colour for a constant sky)
 uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
 uniform float u_ms_g;          // anisotropy of the octave phase functions
-uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
+uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
+uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
 out vec4 o_color;
 
 // A fragment with no cloud on its ray. Full screen it is discarded; a hull fragment instead writes transparent black
@@ -354,5 +355,5 @@ void main()
 #if MS_MODE >= 2
     L += vec3(dot(u_ms_gain, Lms));
 #endif
-    o_color = vec4((u_sun_irr * L + amb) * u_out_scale, alpha);
+    o_color = vec4(min((u_sun_irr * L + amb) * u_out_scale, vec3(u_out_max)), alpha);
 }

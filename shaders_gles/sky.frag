@@ -6,9 +6,9 @@ in vec2 v_ndc;
 uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
 uniform vec3 u_sun_dir;
 uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
-uniform float u_sun_disk_max;  // radiance cap of the disk (fp16 targets overflow at 65504)
+uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
 uniform vec3 u_ground;         // ground radiance
-uniform vec3 u_out_scale;      // 1, or exposure / white where the HDR target is RGBA8 (gpu_scene.c: cu_out_scale)
+uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
 #if SKY_CONSTANT
 uniform vec3 u_sky_color;
 #else
@@ -56,7 +56,7 @@ void main()
 #endif
         // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
         if (dot(dir, u_sun_dir) > 0.99998917)
-            L += min(u_sun_irr / 6.8e-5, vec3(u_sun_disk_max));
+            L += u_sun_irr / 6.8e-5;
     }
-    o_color = vec4(L * u_out_scale, 1.0);
+    o_color = vec4(min(L * u_out_scale, vec3(u_out_max)), 1.0);
 }

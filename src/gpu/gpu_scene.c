@@ -96,12 +96,20 @@ void cu_sun_uniforms(const cu_gpu_scene *ctx, const cu_sun_locs *l)
     gl->Uniform1i(l->intervals, ctx->sun.intervals);
 }
 
-/* A float HDR target stores radiance and the tone mapper applies exposure and white balance; an RGBA8 target (GLES
- * 3.0 without EXT_color_buffer_*float) holds only 0..1, so there the passes store exposed, white-balanced values
- * and the tone mapper gets 1 and 1: highlights beyond the display's white clip, the rest is as with a float
- * target, where storing radiance would clip the whole sky to 1. */
+/* The tone-mapped frame's HDR target (RGBA16F, or RGBA8 on GLES 3.0 without EXT_color_buffer_*float) stores
+ * exposed, white-balanced values and the tone mapper gets 1 and 1: RGBA8 holds only 0..1 (storing radiance would
+ * clip the whole sky to 1; this way highlights beyond the display's white clip, the rest is as with a float
+ * target), and fp16's 65504 would overflow on legal bright scenes. Linear output (RGBA32F) stores radiance. */
 void cu_out_scale(const cu_gpu_scene *ctx, float s[3])
 {
     for (int c = 0; c < 3; c++)
-        s[c] = ctx->hdr_format == GL_RGBA8 ? (float)(ctx->scene->exposure / ctx->white[c]) : 1.0f;
+        s[c] = ctx->hdr_format != GL_RGBA32F ? (float)(ctx->scene->exposure / ctx->white[c]) : 1.0f;
+}
+
+/* The largest value a pass may store: with fp16 two passes' sum (sky + premultiplied cloud) must stay below
+ * 65504, or the target holds Inf and the tone curve makes it NaN (Inf / Inf). Exposed values past 7.3 are white
+ * already, so the cap changes no pixel. RGBA8 clamps by itself; RGBA32F holds every legal scene (scene_keys.c). */
+float cu_out_max(const cu_gpu_scene *ctx)
+{
+    return ctx->hdr_format == GL_RGBA16F ? 30000.0f : ctx->hdr_format == GL_RGBA8 ? 1.0f : 3.0e38f;
 }

@@ -119,4 +119,6 @@ void cu_sun_uniforms(const cu_gpu_scene *ctx, const cu_sun_locs *l);
 
 /* What the sky and cloud passes multiply their radiance by (see gpu_scene.c). */
 void cu_out_scale(const cu_gpu_scene *ctx, float s[3]);
+/* The largest value the sky and cloud passes store (see gpu_scene.c). */
+float cu_out_max(const cu_gpu_scene *ctx);
 #endif

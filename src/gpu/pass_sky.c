@@ -10,7 +10,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
         return 1;
     cu_sun_locs_get(gl, p->prog, &p->sun);
 #define LOC(f) p->f = cu_gpu_loc(gl, p->prog, "u_" #f)
-    LOC(inv_viewproj); LOC(sun_irr); LOC(sun_disk_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
+    LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
     LOC(zenith); LOC(norm);
 #undef LOC
     return 0;
@@ -34,9 +34,7 @@ void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx)
     cu_sun_uniforms(ctx, &p->sun);
     gl->Uniform3f(p->sun_irr, (float)sky->sun_irradiance[0], (float)sky->sun_irradiance[1],
                   (float)sky->sun_irradiance[2]);
-    /* the disk's radiance capped below what the target holds (fp16 overflows at 65504) */
-    GLenum f = ctx->hdr_format;
-    gl->Uniform1f(p->sun_disk_max, f == GL_RGBA32F ? 1e30f : f == GL_RGBA16F ? 60000.0f : 1e4f);
+    gl->Uniform1f(p->out_max, cu_out_max(ctx)); /* the disk capped below what the target holds */
     gl->Uniform3f(p->ground, (float)sky->ground[0], (float)sky->ground[1], (float)sky->ground[2]);
     float os[3];
     cu_out_scale(ctx, os);

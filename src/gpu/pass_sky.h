@@ -7,7 +7,7 @@
 typedef struct cu_pass_sky {
     GLuint prog;
     cu_sun_locs sun;
-    GLint inv_viewproj, sun_irr, sun_disk_max, ground, out_scale, sky_color, perez, zenith, norm;
+    GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color, perez, zenith, norm;
 } cu_pass_sky;
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);

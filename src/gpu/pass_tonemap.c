@@ -72,7 +72,7 @@ void cu_pass_tonemap_draw(const cu_pass_tonemap *p, const cu_gpu_scene *ctx, uns
     }
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, p->hdr.tex[0]);
-    int pre = p->hdr.format == GL_RGBA8; /* the passes applied exposure and white already (cu_out_scale) */
+    int pre = p->hdr.format != GL_RGBA32F; /* the passes applied exposure and white already (cu_out_scale) */
     gl->Uniform1f(l->exposure, pre ? 1.0f : (float)s->exposure);
     gl->Uniform3f(l->white, pre ? 1.0f : (float)ctx->white[0], pre ? 1.0f : (float)ctx->white[1],
                   pre ? 1.0f : (float)ctx->white[2]);

@@ -10,7 +10,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     cu_sun_locs_get(gl, p, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, p, "u_" #f)
     LOC(viewproj); LOC(inv_viewproj); LOC(cam); LOC(bound_R); LOC(seg_ratio); LOC(phase_n); LOC(sun_irr);
-    LOC(sky_rad); LOC(ground_rad); LOC(ms_abc); LOC(ms_g); LOC(peak_f); LOC(ms_gain); LOC(out_scale);
+    LOC(sky_rad); LOC(ground_rad); LOC(ms_abc); LOC(ms_g); LOC(peak_f); LOC(ms_gain); LOC(out_scale); LOC(out_max);
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
     LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear);
@@ -109,6 +109,7 @@ void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_loc
     float os[3];
     cu_out_scale(ctx, os);
     gl->Uniform3f(l->out_scale, os[0], os[1], os[2]);
+    gl->Uniform1f(l->out_max, cu_out_max(ctx));
 }
 
 void cu_shading_bind(const cu_gpu_scene *ctx)

@@ -310,12 +310,40 @@ static void test_culling(void **st)
     assert_int_equal(cu_renderer_set_scene(host_ctx.r, host_scene, &e), 0);
 }
 
+/* The tone-mapped frame's fp16 target holds no Inf on the brightest legal scene (the sun and sky at their largest,
+ * exposure 1e6): the passes store exposed values capped below 65504, which the tone curve shows as white anyway. */
+static void test_fp16_target_finite(void **st)
+{
+    (void)st;
+    static float px[N * 4];
+    cu_error e;
+    cu_scene *s;
+    assert_int_equal(cu_scene_parse(&s, "bright.scene", HOST_SCENE_TEXT, strlen(HOST_SCENE_TEXT), &e), 0);
+    assert_int_equal(cu_scene_set(s, "sun.irradiance=1e6 1e6 1e6", &e), 0);
+    assert_int_equal(cu_scene_set(s, "output.exposure=1e6", &e), 0);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, s, &e), 0);
+    host_render((cu_frame){.fbo = fbo8, .width = W, .height = H});
+    const cu_target *hdr = &host_ctx.r->pass_tonemap.hdr;
+    if (hdr->format != GL_RGBA16F)
+        skip();
+    host_read(hdr->fbo, 1, px);
+    for (int i = 0; i < N * 4; i++)
+        if (!isfinite(px[i]) || px[i] > 65504.0f)
+            fail_msg("fp16 target pixel %d channel %d = %g", i / 4, i % 4, px[i]);
+    host_read(fbo8, 0, px);
+    for (int i = 0; i < N * 4; i++)
+        assert_true(px[i] == 255.0f);
+    cu_scene_free(s);
+    assert_int_equal(cu_renderer_set_scene(host_ctx.r, host_scene, &e), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_state_contract),
         cmocka_unit_test(test_projection_extremes),
         cmocka_unit_test(test_culling),
+        cmocka_unit_test(test_fp16_target_finite),
     };
     return cmocka_run_group_tests(tests, host_setup, host_teardown);
 }
