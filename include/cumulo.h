@@ -66,6 +66,11 @@ int  cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err);
 void cu_renderer_destroy(cu_renderer *r);
 /* Copies the scene, builds the shader variants it needs and its GPU resources. */
 int  cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err);
+/* The scene time in seconds ([scene] time when the scene is set): the clouds drift with their wind (wrapping around a
+ * [layer]'s extent), form and dissolve through their life cycles. Nothing is rebuilt: a cloud's maps are remade
+ * only when it starts a new life. Fails for a non-finite time or |t| > 1e9 s. */
+int  cu_renderer_set_time(cu_renderer *r, double seconds, cu_error *err);
+double cu_renderer_get_time(const cu_renderer *r);
 /* Moves the sun (degrees); only the sun-dependent passes are redone on the next frame. */
 int  cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err);
 void cu_renderer_get_sun(const cu_renderer *r, double *elevation_deg, double *azimuth_deg);

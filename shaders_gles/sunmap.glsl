@@ -24,6 +24,7 @@ uniform vec3 u_sun_dir;        // toward the sun
 uniform vec3 u_sun_right, u_sun_up;
 uniform float u_sun_R;         // the sun plane is at 2R along u_sun_dir, maps cover [-R, R]^2
 uniform int u_sun_size;        // texels per side
+uniform float u_sun_tau_scale; // the cloud's density now against the map's (life cycle, border fade)
 #if SHADOW_PEEL
 uniform sampler2D u_sun_layers;  // per interval j (tile j of SUN_INTERVALS side by side): z_entry, z_exit (m)
 uniform sampler2D u_sun_tau;     // tau at 1/4, 1/2, 3/4, 1 of interval j, counted from its entry
@@ -132,9 +133,9 @@ float sun_optical_depth(vec3 p, float ke)
     float t10 = tau_in_texel(clamp(i0 + ivec2(1, 0), ivec2(0), ivec2(hi)), z);
     float t01 = tau_in_texel(clamp(i0 + ivec2(0, 1), ivec2(0), ivec2(hi)), z);
     float t11 = tau_in_texel(clamp(i0 + ivec2(1, 1), ivec2(0), ivec2(hi)), z);
-    return mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
+    return u_sun_tau_scale * mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 #else
-    return tau_in_texel(clamp(ivec2(floor(uv * float(u_sun_size))), ivec2(0), ivec2(hi)), z);
+    return u_sun_tau_scale * tau_in_texel(clamp(ivec2(floor(uv * float(u_sun_size))), ivec2(0), ivec2(hi)), z);
 #endif
 #else
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))

@@ -11,21 +11,46 @@ double cu_sigmoid(double x)
 
 void cu_cloud_build(cu_cloud *cl, const cu_scene *s, const cu_noise *noise)
 {
+    if (cu_scene_cloud_count(s) == 0) {
+        cu_cloud_spec none = {0};
+        none.density_cm3 = s->density_cm3;
+        none.boundary_m = s->boundary_m;
+        cu_cloud_build_spec(cl, s, &none, noise);
+        return;
+    }
+    cu_cloud_spec c = cu_scene_cloud(s, 0);
+    cu_cloud_build_spec(cl, s, &c, noise);
+}
+
+void cu_cloud_build_spec(cu_cloud *cl, const cu_scene *s, const cu_cloud_spec *spec, const cu_noise *noise)
+{
     memset(cl, 0, sizeof *cl);
+    const cu_ellipsoid *ell = &s->ell[spec->first];
+    cu_cloud_build_ellipsoids(cl, s, ell, spec->count, spec->density_cm3, spec->boundary_m, spec->noise_offset, noise);
+}
+
+void cu_cloud_build_ellipsoids(cu_cloud *cl, const cu_scene *s, const cu_ellipsoid *ell, int n, double density_cm3,
+                               double boundary_m, const double noise_offset_m[3], const cu_noise *noise)
+{
+    memset(cl, 0, sizeof *cl);
+    if (n > CU_MAX_ELLIPSOIDS)
+        n = CU_MAX_ELLIPSOIDS; /* the parser and the layer generator keep within it */
     vec3 lo = v3(1e300, 1e300, 1e300), hi = v3(-1e300, -1e300, -1e300);
-    for (int i = 0; i < s->n_ellipsoids; i++) {
-        vec3 c = v3_from(s->ell[i].center), r = v3_from(s->ell[i].radii);
+    if (n == 0)
+        lo = hi = v3(0, 0, 0);
+    for (int i = 0; i < n; i++) {
+        vec3 c = v3_from(ell[i].center), r = v3_from(ell[i].radii);
         lo = v3(fmin(lo.x, c.x - r.x), fmin(lo.y, c.y - r.y), fmin(lo.z, c.z - r.z));
         hi = v3(fmax(hi.x, c.x + r.x), fmax(hi.y, c.y + r.y), fmax(hi.z, c.z + r.z));
     }
     /* Kol eq. 3.13-3.15: the cloud centre is the middle of the extremities; we also compute in that frame so
      * that single-precision GPU maths keeps its digits for clouds 100 km away. */
     cl->origin = v3_scale(v3_add(lo, hi), 0.5);
-    cl->n = s->n_ellipsoids;
+    cl->n = n;
     cl->bound_radius = 0;
     for (int i = 0; i < cl->n; i++) {
-        cl->c[i] = v3_sub(v3_from(s->ell[i].center), cl->origin);
-        cl->r[i] = v3_from(s->ell[i].radii);
+        cl->c[i] = v3_sub(v3_from(ell[i].center), cl->origin);
+        cl->r[i] = v3_from(ell[i].radii);
         double rmax = fmax(cl->r[i].x, fmax(cl->r[i].y, cl->r[i].z));
         cl->bound_radius = fmax(cl->bound_radius, v3_len(cl->c[i]) + rmax);
     }
@@ -37,13 +62,15 @@ void cu_cloud_build(cu_cloud *cl, const cu_scene *s, const cu_noise *noise)
             if (cu_ellipsoids_may_overlap(cl->c[i], cl->r[i], cl->c[j], cl->r[j]))
                 cl->neighbours[i] |= (uint64_t)1 << j;
     }
-    cl->ke = cu_scene_core_extinction(s);
-    cl->h = s->boundary_m;
+    cl->ke = cu_scene_extinction_at(s, density_cm3);
+    cl->h = boundary_m;
     cl->profile = s->profile;
     cl->noise_on = s->noise && noise != NULL;
     cl->octaves = s->noise_octaves;
     cl->noise_freq = s->noise_scale / 1000.0;
-    vec3 o = v3_scale(cl->origin, cl->noise_freq);
+    /* The noise is the cloud's own: anchored where it was built (plus its offset), so moving the cloud with the wind
+     * moves its noise with it and its sun maps stay valid (the boil is a slow drift of its own, renderer.c). */
+    vec3 o = v3_scale(v3_add(cl->origin, v3_from(noise_offset_m)), cl->noise_freq);
     cl->noise_offset = v3(o.x - floor(o.x), o.y - floor(o.y), o.z - floor(o.z));
     cl->noise = noise;
 }

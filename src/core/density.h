@@ -24,7 +24,13 @@ typedef struct cu_cloud {
     const cu_noise *noise;
 } cu_cloud;
 
+/* The scene's first cloud (none: an empty cloud). */
 void cu_cloud_build(cu_cloud *cl, const cu_scene *s, const cu_noise *noise);
+/* A resolved cloud of the file (cu_scene_cloud). */
+void cu_cloud_build_spec(cu_cloud *cl, const cu_scene *s, const cu_cloud_spec *spec, const cu_noise *noise);
+/* Any n <= CU_MAX_ELLIPSOIDS ellipsoids (world) with the scene's droplets, profile and noise settings. */
+void cu_cloud_build_ellipsoids(cu_cloud *cl, const cu_scene *s, const cu_ellipsoid *ell, int n, double density_cm3,
+                               double boundary_m, const double noise_offset_m[3], const cu_noise *noise);
 /* Kol eq. 3.2: s(x) = 6x^5 - 15x^4 + 10x^3, clamped to [0,1]. */
 double cu_sigmoid(double x);
 /* Signed radial distance to the union (max over ellipsoids). all = 1 uses every ellipsoid, 0 the neighbour lists

@@ -4,13 +4,43 @@
 #define CU_SCENE_H
 #include "cumulo.h"
 
-#define CU_MAX_ELLIPSOIDS 64
+#define CU_MAX_ELLIPSOIDS 64          /* per cloud: the shaders' uniform arrays */
+#define CU_MAX_SCENE_ELLIPSOIDS 4096   /* written in one file, over all its clouds */
+#define CU_MAX_CLOUDS 1024             /* written in one file ([layer] sections generate any number more) */
+#define CU_MAX_LAYERS 8
 #define CU_MAX_INTERVALS 8
 
 typedef struct cu_ellipsoid {
     double center[3]; /* m, world */
     double radii[3];  /* m, along world x, y, z */
 } cu_ellipsoid;
+
+/* One cloud written in the file: the [ellipsoid] sections after a [cloud] header (the first cloud also takes those
+ * before any). A value it does not give (has_* = 0) is the first [cloud] section's, which the scene holds:
+ * cu_scene_cloud() resolves them. */
+typedef struct cu_cloud_spec {
+    int first, count;         /* its ellipsoids in cu_scene.ell */
+    int line;                 /* of its [cloud] header (0: none) */
+    int has_density, has_boundary, has_wind, has_noise_offset, has_lifetime, has_life_phase;
+    double density_cm3;       /* droplets per cm^3 in the core */
+    double boundary_m;        /* h */
+    double wind[2];           /* m/s toward east and north */
+    double noise_offset[3];   /* m: where in the noise field the cloud sits (its own look) */
+    double lifetime;          /* s: forms, matures and dissolves over this, then forms again (0: forever) */
+    double life_phase;        /* 0..1: where in its life the cloud is at time 0 */
+} cu_cloud_spec;
+
+/* One [layer]: a field of generated cumulus (src/core/layer.c). */
+typedef struct cu_scene_layer {
+    int type;                 /* cu_cumulus_type */
+    double base, thickness;   /* m */
+    double coverage;          /* 0..1 seen from straight above */
+    double extent;            /* m: side of the square centred on the origin; clouds wrap around it */
+    int seed;
+    double wind[2];           /* m/s toward east and north */
+    double lifetime;          /* s: each cloud's life (0: forever) */
+    int line;                 /* of its header */
+} cu_scene_layer;
 
 typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MIE } cu_phase_model;
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
@@ -21,6 +51,8 @@ typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, 
 struct cu_scene {
     char name[256];
     unsigned char explicit_key[96]; /* by cu_scene_keys index: keys the file or --set gave (a preset leaves them) */
+    /* [scene] */
+    double time;              /* s: wind, life cycles and (with [sun] time_utc) the sun follow it */
     /* [output] */
     int width, height;
     double exposure;          /* multiplies radiance (kcd/m^2) before tone mapping */
@@ -29,6 +61,7 @@ struct cu_scene {
     double cam_fov;           /* degrees, vertical */
     /* [sun] */
     double sun_elevation, sun_azimuth; /* degrees */
+    double latitude, longitude;        /* degrees, north and east positive: with time_utc, where the sun is seen */
     double turbidity;         /* Preetham atmospheric turbidity */
     int has_sun_irradiance;
     double sun_irradiance[3]; /* klx-like units per channel, on a plane perpendicular to the rays */
@@ -44,9 +77,15 @@ struct cu_scene {
     cu_phase_model phase;
     double phase_g;
     cu_profile profile;
-    /* [ellipsoid] ... */
+    double cloud_wind[2], cloud_noise_offset[3], cloud_lifetime, cloud_life_phase; /* every cloud's defaults */
+    /* [cloud] ... [ellipsoid] ... (clouds[0]'s density and boundary are the fields above) */
+    int n_clouds;
+    cu_cloud_spec clouds[CU_MAX_CLOUDS];
     int n_ellipsoids;
-    cu_ellipsoid ell[CU_MAX_ELLIPSOIDS];
+    cu_ellipsoid ell[CU_MAX_SCENE_ELLIPSOIDS];
+    /* [layer] ... */
+    int n_layers;
+    cu_scene_layer layers[CU_MAX_LAYERS];
     /* [quality] */
     int segments;             /* per ellipsoid crossed */
     double segment_ratio;     /* geometric ratio of consecutive segment lengths (1 = uniform) */
@@ -78,4 +117,11 @@ struct cu_scene {
 void cu_scene_defaults(cu_scene *s);
 /* Extinction coefficient of the core in m^-1 (k_e = rho_0 * 2 pi r_e^2, Kol eq. 3.3). */
 double cu_scene_core_extinction(const cu_scene *s);
+/* The same for a density of rho cm^-3 with the scene's droplets. */
+double cu_scene_extinction_at(const cu_scene *s, double density_cm3);
+/* Cloud i of the file with every value resolved (its own, or the first [cloud] section's; the noise offset of a
+ * cloud that gives none differs from cloud to cloud). */
+cu_cloud_spec cu_scene_cloud(const cu_scene *s, int i);
+/* The written clouds: n_clouds, or 1 for a scene built in code that filled ell[] but no cloud list. */
+int cu_scene_cloud_count(const cu_scene *s);
 #endif

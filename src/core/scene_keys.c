@@ -15,10 +15,14 @@ static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 static const char *const integration_names[] = {"exponential", "kol", NULL};
+static const char *const layer_type_names[] = {"cumulus-humilis", "cumulus-mediocris", "cumulus-congestus",
+                                               NULL}; /* in cu_cumulus_type order (layer.h) */
 static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in cu_preset order (presets.h) */
 
 #define S(f) offsetof(cu_scene, f)
 #define E(f) offsetof(cu_ellipsoid, f)
+#define C(f) offsetof(cu_cloud_spec, f)
+#define L(f) offsetof(cu_scene_layer, f)
 /* One key per line: section, name, type, count, values, default, lo, hi, lo_open, multiple, unit, doc, field. */
 #define NUM(sec, key, n, def, lo, hi, open, unit, doc, field) \
     {sec, key, CU_KEY_NUMBER, n, NULL, def, lo, hi, open, 0, unit, doc, field, 0}
@@ -28,6 +32,9 @@ static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in
 #define BOOL(sec, key, def, doc, field) {sec, key, CU_KEY_BOOL, 1, bool_names, def, 0, 0, 0, 0, "", doc, field, 0}
 
 const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
+    /* time: |t| <= 1e9 s (32 years); positions move by wind x time and wrap, in double on the CPU */
+    NUM("scene", "time", 1, "0", -1e9, 1e9, 0, "s", "scene time: wind, life cycles and the sun (with time_utc) follow it",
+        S(time)),
     /* size <= 16384: GLES limits (GL_MAX_RENDERBUFFER_SIZE, checked at render time); the maths is per pixel */
     INT("output", "size", 2, "640 480", 1, 16384, 0, "pixels", "image width and height", S(width)),
     /* exposure <= 1e6: the tone curve squares exposure x radiance (tonemap.frag: x (2.51 x + 0.03)), which overflows
@@ -48,6 +55,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     NUM("sun", "elevation", 1, "0", -90, 90, 0, "degrees", "angle of the sun above the horizon", S(sun_elevation)),
     NUM("sun", "azimuth", 1, "0", -360, 720, 0, "degrees", "direction of the sun, from north toward east",
         S(sun_azimuth)),
+    NUM("sun", "latitude", 1, "0", -90, 90, 0, "degrees", "with time_utc: the place, north positive", S(latitude)),
+    NUM("sun", "longitude", 1, "0", -180, 180, 0, "degrees", "with time_utc: the place, east positive",
+        S(longitude)),
     NUM("sun", "turbidity", 1, "2.5", 1.7, 10, 0, "", "Preetham atmospheric turbidity", S(turbidity)),
     /* irradiance, sky colour <= 1e6 (Preetham's sun: ~100): with exposure <= 1e6 the tone curve stays finite (above) */
     {"sun", "irradiance", CU_KEY_NUMBER, 3, NULL, NULL, 0, 1e6, 0, 0, "",
@@ -75,6 +85,16 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     NUM("cloud", "g", 1, "0.86", -0.99, 0.99, 0, "", "asymmetry of hg and cornette-shanks", S(phase_g)),
     ENUM("cloud", "profile", profile_names, "tapered",
          "density profile: tapered noise, or kol (Kol eq. 3.1 as printed)", S(profile)),
+    /* wind <= 200 m/s (jet streams reach 100); offsets within the noise coordinates' fp32 range (|x| <= 5e5 m) */
+    NUM("cloud", "wind", 2, "0 0", -200, 200, 0, "m/s", "the cloud's drift toward east and north (every cloud's "
+        "unless it gives its own)", S(cloud_wind)),
+    NUM("cloud", "noise_offset", 3, "0 0 0", -5e5, 5e5, 0, "m",
+        "where in the noise field the cloud sits (later clouds: a different place each by default)",
+        S(cloud_noise_offset)),
+    NUM("cloud", "lifetime", 1, "0", 0, 1e7, 0, "s", "forms, matures and dissolves over this, then forms again "
+        "(0: lives forever)", S(cloud_lifetime)),
+    NUM("cloud", "life_phase", 1, "0.5", 0, 1, 0, "", "where in its life the cloud is at time 0 (0.5: mature)",
+        S(cloud_life_phase)),
     /* [quality], [light] and [ms] counts: loop counts and array sizes the shaders are compiled with; no count enters
      * a formula as a magnitude. segment_ratio <= 10: knot_t in density.glsl is written as r^(j - n) so that r^n
      * never overflows (10^192 would over 3 merged chords of 64 segments). */
@@ -130,6 +150,39 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          S(ms_closure)),
 };
 
+/* A [cloud] after the first: what may differ between clouds (the droplets and the phase function are shared). */
+const cu_scene_key cu_cloud_keys[CU_CLOUD_KEY_COUNT] = {
+    {"cloud", "density", CU_KEY_NUMBER, 1, NULL, NULL, 0, 1e7, 0, 0, "cm^-3", "droplets in the core (rho_0)",
+     C(density_cm3), C(has_density)},
+    {"cloud", "boundary", CU_KEY_NUMBER, 1, NULL, NULL, 0, 1e6, 0, 0, "m", "thickness h of the noisy boundary",
+     C(boundary_m), C(has_boundary)},
+    {"cloud", "wind", CU_KEY_NUMBER, 2, NULL, NULL, -200, 200, 0, 0, "m/s", "the cloud's drift", C(wind),
+     C(has_wind)},
+    {"cloud", "noise_offset", CU_KEY_NUMBER, 3, NULL, NULL, -5e5, 5e5, 0, 0, "m",
+     "where in the noise field the cloud sits", C(noise_offset), C(has_noise_offset)},
+    {"cloud", "lifetime", CU_KEY_NUMBER, 1, NULL, NULL, 0, 1e7, 0, 0, "s", "its life cycle (0: forever)", C(lifetime),
+     C(has_lifetime)},
+    {"cloud", "life_phase", CU_KEY_NUMBER, 1, NULL, NULL, 0, 1, 0, 0, "", "where in its life it is at time 0",
+     C(life_phase), C(has_life_phase)},
+};
+
+/* [layer]: a generated field of cumulus (src/core/layer.c holds the size distribution and the shapes). */
+const cu_scene_key cu_layer_keys[CU_LAYER_KEY_COUNT] = {
+    ENUM("layer", "type", layer_type_names, "cumulus-mediocris",
+         "cumulus-humilis (flat), cumulus-mediocris or cumulus-congestus (towering)", L(type)),
+    /* the generator's own ranges (layer.c): a base within the troposphere, a layer 50 m .. 15 km thick */
+    NUM("layer", "base", 1, "1000", 0, 20000, 0, "m", "cloud base above the ground", L(base)),
+    NUM("layer", "thickness", 1, "1500", 50, 15000, 0, "m", "from the base to the tallest tops", L(thickness)),
+    NUM("layer", "coverage", 1, "0.3", 0, 1, 0, "", "fraction of the sky covered, seen from straight above",
+        L(coverage)),
+    NUM("layer", "extent", 1, "20000", 100, 500000, 0, "m", "side of the square (centred on the origin) the clouds "
+        "fill and wrap around", L(extent)),
+    INT("layer", "seed", 1, "1", 0, 2147483647, 0, "", "the same seed gives the same sky on every machine", L(seed)),
+    NUM("layer", "wind", 2, "5 0", -200, 200, 0, "m/s", "the layer's drift toward east and north", L(wind)),
+    NUM("layer", "lifetime", 1, "900", 0, 1e7, 0, "s", "each cloud forms, matures and dissolves over this (0: "
+        "forever)", L(lifetime)),
+};
+
 const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT] = {
     /* |x| <= 5e5 m, as the camera: fp32 holds the cloud-local frame (origin mid-cloud) to 0.1 m at 1.7e6 m. */
     NUM("ellipsoid", "center", 3, NULL, -5e5, 5e5, 0, "m", "centre, world coordinates (required)", E(center)),
@@ -141,22 +194,32 @@ const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT] = {
 };
 #undef S
 #undef E
+#undef C
+#undef L
 
 const cu_scene_section cu_scene_sections[CU_SCENE_SECTION_COUNT] = {
-    {"output", 0, 0, "the image"},
-    {"camera", 1, 0, "a pinhole camera"},
-    {"sun", 1, 0, "the sun and the Preetham atmosphere"},
-    {"sky", 0, 0, "the light from the sky and the ground"},
-    {"cloud", 1, 0, "the droplets and the density field of every ellipsoid"},
-    {"ellipsoid", 1, 1, "one ellipsoid of the cloud; repeat the section for each, up to 64"},
-    {"quality", 0, 0, "speed against accuracy of the real-time renderer"},
-    {"light", 0, 0, "the sun's transmittance through the cloud"},
-    {"ms", 0, 0, "multiple scattering"},
+    {"scene", 0, 0, "the scene's time", NULL, 0},
+    {"output", 0, 0, "the image", NULL, 0},
+    {"camera", 1, 0, "a pinhole camera", NULL, 0},
+    {"sun", 1, 0, "the sun and the Preetham atmosphere", NULL, 0},
+    {"sky", 0, 0, "the light from the sky and the ground", NULL, 0},
+    {"cloud", 0, 0, "the droplets of every cloud; the first [cloud] also sets every cloud's defaults, and each further "
+                    "[cloud] starts a new cloud (density, boundary, wind, noise_offset, lifetime, life_phase of its "
+                    "own) made of the [ellipsoid] sections after it", NULL, 0},
+    {"ellipsoid", 0, 1, "one ellipsoid of the current cloud; repeat the section for each, up to 64 a cloud",
+     cu_ellipsoid_keys, CU_ELLIPSOID_KEY_COUNT},
+    {"layer", 0, 1, "a generated field of cumulus; repeat for more layers, up to 8", cu_layer_keys,
+     CU_LAYER_KEY_COUNT},
+    {"quality", 0, 0, "speed against accuracy of the real-time renderer", NULL, 0},
+    {"light", 0, 0, "the sun's transmittance through the cloud", NULL, 0},
+    {"ms", 0, 0, "multiple scattering", NULL, 0},
 };
 
 /* Counts in the header match the tables; explicit and seen flags fit (scene.h). */
 typedef char key_count_ok[sizeof cu_scene_keys / sizeof cu_scene_keys[0] == CU_SCENE_KEY_COUNT ? 1 : -1];
 typedef char ell_count_ok[sizeof cu_ellipsoid_keys / sizeof cu_ellipsoid_keys[0] == CU_ELLIPSOID_KEY_COUNT ? 1 : -1];
+typedef char cloud_count_ok[sizeof cu_cloud_keys / sizeof cu_cloud_keys[0] == CU_CLOUD_KEY_COUNT ? 1 : -1];
+typedef char layer_count_ok[sizeof cu_layer_keys / sizeof cu_layer_keys[0] == CU_LAYER_KEY_COUNT ? 1 : -1];
 typedef char keys_fit_flags[CU_SCENE_KEY_COUNT <= sizeof(((cu_scene *)0)->explicit_key) ? 1 : -1];
 typedef char name_first[offsetof(cu_scene, name) == 0 ? 1 : -1]; /* cu_scene_key.given == 0 means none */
 
@@ -170,8 +233,22 @@ const cu_scene_section *cu_scene_section_find(const char *name)
 
 const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n)
 {
-    *n = sec->repeated ? CU_ELLIPSOID_KEY_COUNT : CU_SCENE_KEY_COUNT;
-    return sec->repeated ? cu_ellipsoid_keys : cu_scene_keys;
+    *n = sec->keys ? sec->n_keys : CU_SCENE_KEY_COUNT;
+    return sec->keys ? sec->keys : cu_scene_keys;
+}
+
+int cu_scene_instances(const cu_scene *s, const cu_scene_section *sec)
+{
+    if (!sec->repeated)
+        return 1;
+    return sec->keys == cu_layer_keys ? s->n_layers : s->n_ellipsoids;
+}
+
+void *cu_scene_instance(cu_scene *s, const cu_scene_section *sec, int i)
+{
+    if (!sec->repeated)
+        return s;
+    return sec->keys == cu_layer_keys ? (void *)&s->layers[i] : (void *)&s->ell[i];
 }
 
 const cu_scene_key *cu_scene_key_find(const char *section, const char *name)
@@ -197,18 +274,22 @@ const char *cu_number_text(double v, char buf[32])
     return buf;
 }
 
-int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
+/* One written cloud's ranges (see cu_scene_check_ranges). */
+static int check_cloud_ranges(const cu_scene *s, int ci, const char *file, cu_error *err)
 {
+    cu_cloud_spec spec = cu_scene_cloud(s, ci);
+    const cu_cloud_spec *cs = &spec;
+    const cu_ellipsoid *ell = &s->ell[cs->first];
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, rmin = 1e300;
-    for (int i = 0; i < s->n_ellipsoids; i++)
+    for (int i = 0; i < cs->count; i++)
         for (int a = 0; a < 3; a++) {
-            lo[a] = fmin(lo[a], s->ell[i].center[a] - s->ell[i].radii[a]);
-            hi[a] = fmax(hi[a], s->ell[i].center[a] + s->ell[i].radii[a]);
-            rmin = fmin(rmin, s->ell[i].radii[a]);
+            lo[a] = fmin(lo[a], ell[i].center[a] - ell[i].radii[a]);
+            hi[a] = fmax(hi[a], ell[i].center[a] + ell[i].radii[a]);
+            rmin = fmin(rmin, ell[i].radii[a]);
         }
     double R = 0, dc = 0; /* as cu_cloud_build: origin mid-AABB, R over centres plus largest radii */
-    for (int i = 0; i < s->n_ellipsoids; i++) {
-        const double *c = s->ell[i].center, *r = s->ell[i].radii;
+    for (int i = 0; i < cs->count; i++) {
+        const double *c = ell[i].center, *r = ell[i].radii;
         double d2 = 0;
         for (int a = 0; a < 3; a++)
             d2 += (c[a] - 0.5 * (lo[a] + hi[a])) * (c[a] - 0.5 * (lo[a] + hi[a]));
@@ -217,19 +298,29 @@ int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
     for (int a = 0; a < 3; a++)
         dc += (s->cam_pos[a] - 0.5 * (lo[a] + hi[a])) * (s->cam_pos[a] - 0.5 * (lo[a] + hi[a]));
     dc = sqrt(dc);
-    char b0[32], b1[32], b2[32];
-    if (s->n_ellipsoids && fmax(dc, 4 * R) > CU_MAX_SCENE_TO_RADIUS * rmin)
+    char b0[32], b1[32], b2[32], which[40] = "";
+    if (s->n_clouds > 1)
+        snprintf(which, sizeof which, " #%d", ci + 1);
+    if (fmax(dc, 4 * R) > CU_MAX_SCENE_TO_RADIUS * rmin)
         return cu_fail(err,
-                       "%s: the scene is too large for its smallest radius, %s m: the camera is %s m from the cloud's "
+                       "%s: the scene is too large for its smallest radius, %s m: the camera is %s m from the cloud%s's "
                        "centre, the cloud's radius is %s m; the distance and 4x the radius must each be at most %g "
                        "smallest radii (single-precision positions)",
-                       file, cu_number_text(rmin, b0), cu_number_text(dc, b1), cu_number_text(R, b2),
+                       file, cu_number_text(rmin, b0), cu_number_text(dc, b1), which, cu_number_text(R, b2),
                        CU_MAX_SCENE_TO_RADIUS);
-    if (s->n_ellipsoids && s->noise && R * s->noise_scale > CU_MAX_NOISE_EXTENT)
+    if (s->noise && R * s->noise_scale > CU_MAX_NOISE_EXTENT)
         return cu_fail(err,
                        "%s: [cloud] 'noise_scale' %s is too fine for a cloud of radius %s m: radius x noise_scale "
                        "must be at most %g m for single precision noise coordinates (or quality.noise = off)",
                        file, cu_number_text(s->noise_scale, b0), cu_number_text(R, b1), CU_MAX_NOISE_EXTENT);
+    return 0;
+}
+
+int cu_scene_check_ranges(const cu_scene *s, const char *file, cu_error *err)
+{
+    for (int i = 0; i < cu_scene_cloud_count(s); i++)
+        if (check_cloud_ranges(s, i, file, err))
+            return 1;
     return 0;
 }
 

@@ -32,25 +32,34 @@ typedef struct cu_scene_key {
 typedef struct cu_scene_section {
     const char *name;
     int required; /* the file must have it */
-    int repeated; /* may appear many times (at most CU_MAX_ELLIPSOIDS), each one a cu_ellipsoid; its keys are
-                     cu_ellipsoid_keys */
+    int repeated; /* may appear many times, each one an instance of keys (a cu_ellipsoid, a cu_scene_layer) */
     const char *doc;
+    const cu_scene_key *keys; /* repeated: its table (offsets into the instance); else NULL: cu_scene_keys */
+    int n_keys;
 } cu_scene_section;
 
 /* Counts are part of the declarations so that other files can size arrays by them; scene_keys.c checks them. */
-#define CU_SCENE_KEY_COUNT 43
+#define CU_SCENE_KEY_COUNT 50
 #define CU_ELLIPSOID_KEY_COUNT 2
-#define CU_SCENE_SECTION_COUNT 9
+#define CU_CLOUD_KEY_COUNT 6
+#define CU_LAYER_KEY_COUNT 8
+#define CU_SCENE_SECTION_COUNT 11
 
 extern const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT];         /* offsets into cu_scene */
 extern const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT]; /* offsets into cu_ellipsoid */
+extern const cu_scene_key cu_cloud_keys[CU_CLOUD_KEY_COUNT];         /* a [cloud] after the first: cu_cloud_spec */
+extern const cu_scene_key cu_layer_keys[CU_LAYER_KEY_COUNT];         /* offsets into cu_scene_layer */
 extern const cu_scene_section cu_scene_sections[CU_SCENE_SECTION_COUNT]; /* in the order the docs list them */
 
 /* The section called name, or NULL. */
 const cu_scene_section *cu_scene_section_find(const char *name);
-/* The key name of section (in cu_ellipsoid_keys for a repeated section), or NULL. */
+/* How many instances of sec the scene holds (1 for a section that is not repeated), and instance i's storage (the
+ * scene itself when not repeated). */
+int cu_scene_instances(const cu_scene *s, const cu_scene_section *sec);
+void *cu_scene_instance(cu_scene *s, const cu_scene_section *sec, int i);
+/* The key name of section (in the section's own table when it is repeated), or NULL. */
 const cu_scene_key *cu_scene_key_find(const char *section, const char *name);
-/* The table holding the keys of section sec (cu_scene_keys or cu_ellipsoid_keys) and its length. */
+/* The table holding the keys of section sec (cu_scene_keys, or a repeated section's own) and its length. */
 const cu_scene_key *cu_scene_section_keys(const cu_scene_section *sec, int *n);
 
 /* Parses the value text of key k (NUL-terminated, blanks trimmed) into dst, the key's field. On failure returns 1, leaves

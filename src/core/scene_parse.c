@@ -18,11 +18,48 @@ void cu_scene_defaults(cu_scene *s)
     cu_scene_keys_defaults(s, cu_scene_keys, CU_SCENE_KEY_COUNT);
 }
 
-double cu_scene_core_extinction(const cu_scene *s)
+double cu_scene_extinction_at(const cu_scene *s, double density_cm3)
 {
-    double rho = s->density_cm3 * 1e6;          /* m^-3 */
+    double rho = density_cm3 * 1e6;             /* m^-3 */
     double re = s->droplet_radius_um * 1e-6;    /* m */
     return rho * 2.0 * 3.14159265358979323846 * re * re;
+}
+
+double cu_scene_core_extinction(const cu_scene *s)
+{
+    return cu_scene_extinction_at(s, s->density_cm3);
+}
+
+int cu_scene_cloud_count(const cu_scene *s)
+{
+    return s->n_clouds > 0 ? s->n_clouds : s->n_ellipsoids > 0;
+}
+
+cu_cloud_spec cu_scene_cloud(const cu_scene *s, int i)
+{
+    cu_cloud_spec c = s->clouds[i];
+    if (s->n_clouds == 0) { /* a scene built in code, not parsed: its ellipsoids are one cloud */
+        memset(&c, 0, sizeof c);
+        c.count = s->n_ellipsoids > CU_MAX_ELLIPSOIDS ? CU_MAX_ELLIPSOIDS : s->n_ellipsoids;
+    }
+    if (!c.has_density)
+        c.density_cm3 = s->density_cm3;
+    if (!c.has_boundary)
+        c.boundary_m = s->boundary_m;
+    if (!c.has_wind)
+        memcpy(c.wind, s->cloud_wind, sizeof c.wind);
+    if (!c.has_noise_offset) {
+        /* A different part of the noise for each cloud, so written clouds of one shape do not look alike: steps of
+         * an irrational fraction of the 1000 m tile, far from its period. */
+        for (int a = 0; a < 3; a++)
+            c.noise_offset[a] = s->cloud_noise_offset[a] + i * 1000.0 * (a == 0 ? 0.6180339887 : a == 1 ? 0.4142135624
+                                                                                                        : 0.7320508076);
+    }
+    if (!c.has_lifetime)
+        c.lifetime = s->cloud_lifetime;
+    if (!c.has_life_phase)
+        c.life_phase = s->cloud_life_phase;
+    return c;
 }
 
 /* The int a key of cu_scene_keys writes, for the multiple-of rule. */
@@ -42,11 +79,45 @@ static void mark_given(cu_scene *s, const cu_scene_key *k)
 /* What the parser remembers about the file beyond the scene itself. */
 typedef struct file_state {
     int have_section[CU_SCENE_SECTION_COUNT];
-    int ell_line[CU_MAX_ELLIPSOIDS];          /* line of each [ellipsoid] header */
-    unsigned ell_seen[CU_MAX_ELLIPSOIDS];     /* bit i: cu_ellipsoid_keys[i] given */
-    unsigned char seen[CU_SCENE_KEY_COUNT];   /* by index in the section's table: keys given in this instance */
+    int ell_line[CU_MAX_SCENE_ELLIPSOIDS];     /* line of each [ellipsoid] header */
+    unsigned ell_seen[CU_MAX_SCENE_ELLIPSOIDS];/* bit i: cu_ellipsoid_keys[i] given */
+    unsigned char seen[CU_SCENE_KEY_COUNT];    /* by index in the section's table: keys given in this instance */
+    int cloud_headers;                         /* [cloud] headers so far: the second and later start a cloud */
 } file_state;
-typedef char ell_keys_fit[CU_ELLIPSOID_KEY_COUNT <= 32 && CU_ELLIPSOID_KEY_COUNT <= CU_SCENE_KEY_COUNT ? 1 : -1];
+typedef char ell_keys_fit[CU_ELLIPSOID_KEY_COUNT <= 32 && CU_ELLIPSOID_KEY_COUNT <= CU_SCENE_KEY_COUNT &&
+                          CU_LAYER_KEY_COUNT <= CU_SCENE_KEY_COUNT && CU_CLOUD_KEY_COUNT <= CU_SCENE_KEY_COUNT ? 1 : -1];
+
+/* Keys a later [cloud] may not give: they belong to every cloud (the phase table, the noise's scale). */
+static int shared_cloud_key(const char *name)
+{
+    for (int i = 0; i < CU_CLOUD_KEY_COUNT; i++)
+        if (strcmp(cu_cloud_keys[i].name, name) == 0)
+            return 0;
+    return 1;
+}
+
+/* Ends the file's cloud list: each cloud's ellipsoid count, empty clouds refused (the first may be empty when it
+ * only sets the defaults, or when the sky is clear). */
+static int finish_clouds(cu_scene *s, const char *file, const file_state *fs, cu_error *err)
+{
+    int n = fs->cloud_headers > 1 ? fs->cloud_headers : 1;
+    for (int i = 0; i < n; i++)
+        s->clouds[i].count = (i + 1 < n ? s->clouds[i + 1].first : s->n_ellipsoids) - s->clouds[i].first;
+    for (int i = 1; i < n; i++)
+        if (s->clouds[i].count == 0)
+            return cu_fail(err, "%s:%d:1: [cloud] #%d has no [ellipsoid]", file, s->clouds[i].line, i + 1);
+    for (int i = 0; i < n; i++)
+        if (s->clouds[i].count > CU_MAX_ELLIPSOIDS)
+            return cu_fail(err, "%s:%d:1: [cloud] #%d has %d ellipsoids; a cloud has at most %d (start another "
+                                "[cloud])", file, s->clouds[i].line ? s->clouds[i].line : fs->ell_line[s->clouds[i].first],
+                           i + 1, s->clouds[i].count, CU_MAX_ELLIPSOIDS);
+    if (s->clouds[0].count == 0) { /* a settings-only first [cloud], or a clear sky */
+        memmove(&s->clouds[0], &s->clouds[1], sizeof s->clouds[0] * (size_t)(n - 1));
+        n--;
+    }
+    s->n_clouds = n;
+    return 0;
+}
 
 /* The checks that span keys or need the whole scene: run after the file and after every --set, so both reject the
  * same scenes. `at` names where the values came from (the file, or the --set). */
@@ -65,13 +136,13 @@ static int scene_checks(const cu_scene *s, const char *at, cu_error *err)
 }
 
 /* What only a whole file can lack: its required sections and each ellipsoid's required keys. */
-static int file_checks(const cu_scene *s, const char *file, const file_state *fs, cu_error *err)
+static int file_checks(cu_scene *s, const char *file, const file_state *fs, cu_error *err)
 {
     for (int i = 0; i < CU_SCENE_SECTION_COUNT; i++)
         if (cu_scene_sections[i].required && !cu_scene_sections[i].repeated && !fs->have_section[i])
             return cu_fail(err, "%s: missing section [%s]", file, cu_scene_sections[i].name);
-    if (s->n_ellipsoids == 0)
-        return cu_fail(err, "%s: missing section [ellipsoid] (a cloud needs at least one)", file);
+    if (finish_clouds(s, file, fs, err))
+        return 1;
     for (int e = 0; e < s->n_ellipsoids; e++)
         for (int i = 0; i < CU_ELLIPSOID_KEY_COUNT; i++)
             if (!cu_ellipsoid_keys[i].def && !(fs->ell_seen[e] >> i & 1))
@@ -119,15 +190,31 @@ static int parse_header(cu_scene *s, file_state *fs, const cu_scene_section **cu
     if (!sec)
         return cu_fail(err, "%s:%d:%d: unknown section [%.40s]", name, lineno, col, p + 1);
     int idx = (int)(sec - cu_scene_sections);
-    if (fs->have_section[idx] && !sec->repeated)
+    int is_cloud = strcmp(sec->name, "cloud") == 0;
+    if (fs->have_section[idx] && !sec->repeated && !is_cloud)
         return cu_fail(err, "%s:%d:%d: section [%s] appears twice", name, lineno, col, sec->name);
     fs->have_section[idx] = 1;
     *cur = sec;
     memset(fs->seen, 0, sizeof fs->seen);
-    if (sec->repeated) {
-        if (s->n_ellipsoids == CU_MAX_ELLIPSOIDS)
-            return cu_fail(err, "%s:%d:%d: too many [ellipsoid] sections (at most %d)", name, lineno, col,
-                           CU_MAX_ELLIPSOIDS);
+    if (is_cloud) {
+        int c = fs->cloud_headers++; /* the first [cloud] is cloud 1's (and every cloud's defaults) */
+        if (c >= CU_MAX_CLOUDS)
+            return cu_fail(err, "%s:%d:%d: too many [cloud] sections (at most %d; a [layer] generates any number)",
+                           name, lineno, col, CU_MAX_CLOUDS);
+        if (c > 0) {
+            memset(&s->clouds[c], 0, sizeof s->clouds[c]);
+            s->clouds[c].first = s->n_ellipsoids;
+        }
+        s->clouds[c].line = lineno;
+    } else if (sec->keys == cu_layer_keys) {
+        if (s->n_layers == CU_MAX_LAYERS)
+            return cu_fail(err, "%s:%d:%d: too many [layer] sections (at most %d)", name, lineno, col, CU_MAX_LAYERS);
+        cu_scene_keys_defaults(&s->layers[s->n_layers], cu_layer_keys, CU_LAYER_KEY_COUNT);
+        s->layers[s->n_layers++].line = lineno;
+    } else if (sec->repeated) {
+        if (s->n_ellipsoids == CU_MAX_SCENE_ELLIPSOIDS)
+            return cu_fail(err, "%s:%d:%d: too many [ellipsoid] sections (at most %d in a file)", name, lineno, col,
+                           CU_MAX_SCENE_ELLIPSOIDS);
         fs->ell_line[s->n_ellipsoids] = lineno;
         cu_scene_keys_defaults(&s->ell[s->n_ellipsoids++], cu_ellipsoid_keys, CU_ELLIPSOID_KEY_COUNT);
     }
@@ -162,12 +249,28 @@ static int parse_assignment(cu_scene *s, file_state *fs, const cu_scene_section 
         return cu_fail(err, "%s:%d:%d: '%s' has no value", name, lineno, vcol, k->name);
     char at[700];
     snprintf(at, sizeof at, "%s:%d:%d", name, lineno, vcol);
-    void *base = sec->repeated ? (void *)&s->ell[s->n_ellipsoids - 1] : (void *)s;
+    int later_cloud = strcmp(sec->name, "cloud") == 0 && fs->cloud_headers > 1;
+    if (later_cloud) { /* a cloud of its own: its table, into its spec */
+        if (shared_cloud_key(k->name))
+            return cu_fail(err, "%s:%d:%d: '%s' is shared by every cloud: set it in the first [cloud] section", name,
+                           lineno, col, k->name);
+        cu_cloud_spec *c = &s->clouds[fs->cloud_headers - 1];
+        const cu_scene_key *ck = NULL;
+        for (int i = 0; i < CU_CLOUD_KEY_COUNT; i++)
+            if (strcmp(cu_cloud_keys[i].name, k->name) == 0)
+                ck = &cu_cloud_keys[i];
+        if (cu_scene_key_parse(ck, (char *)c + ck->offset, val, at, err))
+            return 1;
+        *(int *)((char *)c + ck->given) = 1;
+        return 0;
+    }
+    int inst = cu_scene_instances(s, sec) - 1;
+    void *base = cu_scene_instance(s, sec, inst);
     if (cu_scene_key_parse(k, (char *)base + k->offset, val, at, err))
         return 1;
-    if (sec->repeated)
-        fs->ell_seen[s->n_ellipsoids - 1] |= 1u << ki;
-    else
+    if (sec->repeated && sec->keys == cu_ellipsoid_keys)
+        fs->ell_seen[inst] |= 1u << ki;
+    else if (!sec->repeated)
         mark_given(s, k);
     return 0;
 }
@@ -306,12 +409,13 @@ static int set_key(cu_scene *s, const char *assignment, cu_error *err)
     const cu_scene_section *sec = cu_scene_section_find(section);
     void *base = s;
     if (sec && sec->repeated) {
-        /* ellipsoid.N.key, N counted from 1 in file order */
+        /* ellipsoid.N.key, layer.N.key: N counted from 1 in file order */
         char *end;
         long idx = strtol(key, &end, 10);
-        if (end == key || *end != '.' || idx < 1 || idx > s->n_ellipsoids)
-            return cu_fail(err, "--set %s: use ellipsoid.N.key with N from 1 to %d", assignment, s->n_ellipsoids);
-        base = &s->ell[idx - 1];
+        int count = cu_scene_instances(s, sec);
+        if (end == key || *end != '.' || idx < 1 || idx > count)
+            return cu_fail(err, "--set %s: use %s.N.key with N from 1 to %d", assignment, sec->name, count);
+        base = cu_scene_instance(s, sec, (int)idx - 1);
         key = end + 1;
     }
     const cu_scene_key *k = cu_scene_key_find(section, key);

@@ -61,9 +61,20 @@ void cu_density_uniforms(const cu_gpu_scene *ctx, const cu_density_locs *l)
         ir[4 * i + 2] = (float)(1.0 / cl->r[i].z);
         ir[4 * i + 3] = 0;
     }
-    gl->Uniform4fv(l->ell_c, cl->n, c);
-    gl->Uniform4fv(l->ell_ir, cl->n, ir);
-    gl->Uniform1f(l->ke, (float)cl->ke);
+    /* The program is built for the scene's largest cloud (NUM_ELL); a smaller one fills the rest with an ellipsoid
+     * of 1 m far below every ray's reach (cast_ray finds no chord through it). */
+    int n = ctx->num_ell > cl->n ? ctx->num_ell : cl->n;
+    for (int i = cl->n; i < n && i < CU_MAX_ELLIPSOIDS; i++) {
+        c[4 * i] = 0;
+        c[4 * i + 1] = -1e7f;
+        c[4 * i + 2] = 0;
+        c[4 * i + 3] = 0;
+        ir[4 * i] = ir[4 * i + 1] = ir[4 * i + 2] = 1;
+        ir[4 * i + 3] = 0;
+    }
+    gl->Uniform4fv(l->ell_c, n, c);
+    gl->Uniform4fv(l->ell_ir, n, ir);
+    gl->Uniform1f(l->ke, (float)(cl->ke * ctx->ke_scale));
     gl->Uniform1f(l->h, (float)(cl->h > 1e-6 ? cl->h : 1e-6));
     gl->Uniform1f(l->noise_freq, (float)cl->noise_freq);
     gl->Uniform3f(l->noise_offset, (float)cl->noise_offset.x, (float)cl->noise_offset.y, (float)cl->noise_offset.z);
@@ -76,7 +87,7 @@ void cu_density_uniforms(const cu_gpu_scene *ctx, const cu_density_locs *l)
 void cu_sun_locs_get(const cu_gl *gl, GLuint p, cu_sun_locs *l)
 {
 #define LOC(f) l->f = cu_gpu_loc(gl, p, "u_sun_" #f)
-    LOC(dir); LOC(right); LOC(up); LOC(R); LOC(size); LOC(intervals);
+    LOC(dir); LOC(right); LOC(up); LOC(R); LOC(size); LOC(intervals); LOC(tau_scale);
 #undef LOC
     cu_gpu_unit(gl, p, "u_sun_layers", CU_UNIT_SUN_MAP);
     cu_gpu_unit(gl, p, "u_sun_tau", CU_UNIT_SUN_TAU);
@@ -94,6 +105,7 @@ void cu_sun_uniforms(const cu_gpu_scene *ctx, const cu_sun_locs *l)
     gl->Uniform1f(l->R, (float)ctx->sun_R);
     gl->Uniform1i(l->size, ctx->sun_size);
     gl->Uniform1i(l->intervals, ctx->sun.intervals);
+    gl->Uniform1f(l->tau_scale, (float)ctx->ke_scale);
 }
 
 /* The tone-mapped frame's HDR target (RGBA16F, or RGBA8 on GLES 3.0 without EXT_color_buffer_*float) stores

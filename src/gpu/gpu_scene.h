@@ -61,7 +61,9 @@ typedef struct cu_gpu_scene {
     int float_rt, half_rt;   /* RGBA32F, RGBA16F colour-renderable */
 
     const cu_scene *scene;
-    const cu_cloud *cloud;
+    const cu_cloud *cloud;   /* the cloud being drawn (one of the renderer's cloud set) */
+    double ke_scale;         /* its density now against its maps' (life cycle, border fade): 1 for a still cloud */
+    int num_ell;             /* ellipsoids the programs are built for: the scene's largest cloud */
     const cu_sky *sky;
     const cu_noise *noise;
     int shadow;              /* the sun-map method in use (the scene's, or front when the context cannot) */
@@ -70,7 +72,8 @@ typedef struct cu_gpu_scene {
     double white[3];         /* the tone mapper's white balance (sky.h) */
 
     GLuint noise_tex, phase_tex;
-    GLuint hull_vbo, hull_ibo, inst_vbo, hull_vao, empty_vao; /* instanced ellipsoid hulls; a VAO for full-screen */
+    GLuint hull_vbo, hull_ibo, empty_vao; /* the hull mesh (instanced per ellipsoid); a VAO for full-screen draws */
+    GLuint hull_vao;         /* the cloud being drawn's: its instances on the mesh */
     int hull_indices;
 
     /* The sun's frame: the sun maps are orthographic views along -sun_dir, 2 sun_R square, sun_size texels. */
@@ -111,7 +114,7 @@ void cu_density_uniforms(const cu_gpu_scene *ctx, const cu_density_locs *l);
 /* The sun's frame (sunmap.glsl, the sun passes, sky.frag's u_sun_dir). Looking up also points the sun-map samplers
  * at their units. */
 typedef struct cu_sun_locs {
-    GLint dir, right, up, R, size, intervals;
+    GLint dir, right, up, R, size, intervals, tau_scale;
 } cu_sun_locs;
 void cu_sun_locs_get(const cu_gl *gl, GLuint p, cu_sun_locs *l);
 /* The one place the sun's direction and axes reach the shaders. */

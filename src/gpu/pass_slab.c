@@ -101,16 +101,7 @@ int cu_pass_slab_create(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *de
     p->map_up = cu_gpu_loc(gl, p->prog, "u_map_up");
     p->map_R = cu_gpu_loc(gl, p->prog, "u_map_R");
     p->map_size = cu_gpu_loc(gl, p->prog, "u_map_size");
-    int maps = ctx->scene->sky_light && ctx->scene->sky_model != CU_SKY_CONSTANT ? 2 : 1;
-    for (int i = 0; i < maps; i++) {
-        cu_target_desc d = {.name = i ? "slab map from the zenith" : "slab map from the sun",
-                            .width = ctx->sun_size, .height = ctx->sun_size, .format = GL_RGBA16F, .colors = 2,
-                            .mipmaps = 1};
-        if (cu_target_create(&p->map[i], gl, &d, err))
-            return 1;
-        p->out.a[i] = p->map[i].tex[0];
-        p->out.n[i] = p->map[i].tex[1];
-    }
+    p->maps = ctx->scene->sky_light && ctx->scene->sky_model != CU_SKY_CONSTANT ? 2 : 1;
     p->out.model = p->model;
     p->out.collector = ctx->ms_mode == CU_MS_COLLECTOR ? p->collector : NULL;
     p->out.tab = p->tab_tex;
@@ -118,10 +109,26 @@ int cu_pass_slab_create(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *de
     return 0;
 }
 
+int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, cu_target map[2], cu_slab_maps *out,
+                             cu_error *err)
+{
+    *out = p->out;
+    if (!p->prog)
+        return 0;
+    for (int i = 0; i < p->maps; i++) {
+        cu_target_desc d = {.name = i ? "slab map from the zenith" : "slab map from the sun",
+                            .width = ctx->sun_size, .height = ctx->sun_size, .format = GL_RGBA16F, .colors = 2,
+                            .mipmaps = 1};
+        if (cu_target_create(&map[i], ctx->gl, &d, err))
+            return 1;
+        out->a[i] = map[i].tex[0];
+        out->n[i] = map[i].tex[1];
+    }
+    return 0;
+}
+
 void cu_pass_slab_destroy(cu_pass_slab *p, const cu_gl *gl)
 {
-    for (int i = 0; i < 2; i++)
-        cu_target_delete(&p->map[i], gl);
     if (p->tab_tex) gl->DeleteTextures(1, &p->tab_tex);
     if (p->coll_tex) gl->DeleteTextures(1, &p->coll_tex);
     if (p->prog) gl->DeleteProgram(p->prog);
@@ -140,18 +147,19 @@ void cu_pass_slab_free(cu_pass_slab *p)
 }
 
 /* Map `which`, then its mip chain: the coverage-weighted averages the shader reads at the blur's level. */
-void cu_pass_slab_update(cu_pass_slab *p, const cu_gpu_scene *ctx, int which)
+void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
+                         cu_slab_maps *out)
 {
-    if (!p->map[which].fbo)
+    if (!map[which].fbo)
         return;
     const cu_gl *gl = ctx->gl;
     vec3 dir = which == 0 ? ctx->sun_dir : v3(0, 1, 0), right, up;
     cu_sun_basis(dir, &right, &up);
     if (which == 1) {
-        p->out.sky_right = right;
-        p->out.sky_up = up;
+        out->sky_right = right;
+        out->sky_up = up;
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, p->map[which].fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, map[which].fbo);
     gl->Viewport(0, 0, ctx->sun_size, ctx->sun_size);
     gl->Disable(GL_DEPTH_TEST);
     gl->Disable(GL_BLEND);
@@ -169,7 +177,7 @@ void cu_pass_slab_update(cu_pass_slab *p, const cu_gpu_scene *ctx, int which)
     gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     for (int i = 0; i < 2; i++) {
-        gl->BindTexture(GL_TEXTURE_2D, p->map[which].tex[i]);
+        gl->BindTexture(GL_TEXTURE_2D, map[which].tex[i]);
         gl->GenerateMipmap(GL_TEXTURE_2D);
     }
 }

@@ -12,8 +12,8 @@ typedef struct cu_pass_slab {
     GLuint prog, tab_tex, coll_tex;
     cu_density_locs density;
     GLint map_dir, map_right, map_up, map_R, map_size;
-    cu_target map[2];               /* from the sun [0] and the zenith [1]: (thickness, depth) [0], normal [1] */
-    cu_slab_maps out;               /* what the cloud pass reads */
+    int maps;                       /* slab maps a cloud has: from the sun [0] and (with a Preetham sky) the zenith [1] */
+    cu_slab_maps out;               /* the tables every cloud's maps share (cu_pass_slab_maps_create copies them) */
 } cu_pass_slab;
 
 /* The multiple-scattering mode in use for ctx->scene (slab needs half-float targets: else octaves), into *ms_mode;
@@ -21,12 +21,17 @@ typedef struct cu_pass_slab {
 int cu_pass_slab_load(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *data_dir, int *ms_mode, cu_error *err);
 /* The shader defines of the loaded model (node counts, SKY_SPLIT); non-zero when buf is too small. */
 int cu_pass_slab_defines(const cu_pass_slab *p, const cu_gpu_scene *ctx, char *buf, size_t n);
-/* Tables, program (built with `defines`) and maps, for ctx->ms_mode. */
+/* Tables and program (built with `defines`), for ctx->ms_mode. */
 int cu_pass_slab_create(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
+/* A cloud's slab maps (the cloud owns them: cu_target_delete), and what the cloud pass reads: out. Nothing when the
+ * mode is not the slab model's. */
+int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, cu_target map[2], cu_slab_maps *out,
+                             cu_error *err);
 /* GL objects only: the tables stay loaded for the next scene. */
 void cu_pass_slab_destroy(cu_pass_slab *p, const cu_gl *gl);
 /* The tables (with the renderer). */
 void cu_pass_slab_free(cu_pass_slab *p);
-/* Renders map 0 (from the sun) or 1 (from the zenith: it depends on the clouds alone) and its mip chain. */
-void cu_pass_slab_update(cu_pass_slab *p, const cu_gpu_scene *ctx, int which);
+/* Renders ctx->cloud's map 0 (from the sun) or 1 (from the zenith: it depends on the cloud alone) and its mip chain. */
+void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
+                         cu_slab_maps *out);
 #endif

@@ -47,10 +47,17 @@ int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull
         d.format = GL_DEPTH_COMPONENT32F;
     }
     d.width = size * p->tiles;
-    if (cu_target_create(&p->map, gl, &d, err))
+    p->map_desc = d;
+    return 0;
+}
+
+int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, cu_target *map, cu_sun_maps *out, cu_error *err)
+{
+    if (cu_target_create(map, gl, &p->map_desc, err))
         return 1;
-    p->out.map = p->map.tex[0];
-    p->out.tau = p->map.tex[1];
+    out->map = map->tex[0];
+    out->tau = map->tex[1];
+    out->intervals = 0;
     return 0;
 }
 
@@ -58,12 +65,11 @@ void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl)
 {
     if (p->prog)
         gl->DeleteProgram(p->prog);
-    cu_target_delete(&p->map, gl);
     memset(p, 0, sizeof *p);
 }
 
 /* The front map: hull fragments from the sun, each writing its ellipsoid's exact entry depth. */
-static void draw_front(cu_pass_sun *p, const cu_gpu_scene *ctx)
+static void draw_front(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map)
 {
     const cu_gl *gl = ctx->gl;
     double R = ctx->sun_R;
@@ -76,7 +82,7 @@ static void draw_front(cu_pass_sun *p, const cu_gpu_scene *ctx)
     gl->DepthMask(GL_TRUE);
     gl->Enable(GL_DEPTH_TEST);
     gl->BindVertexArray(ctx->hull_vao);
-    gl->BindFramebuffer(GL_FRAMEBUFFER, p->map.fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, map->fbo);
     gl->ClearDepthf(1.0f);
     gl->Clear(GL_DEPTH_BUFFER_BIT);
     gl->DepthFunc(GL_LESS);
@@ -88,26 +94,26 @@ static void draw_front(cu_pass_sun *p, const cu_gpu_scene *ctx)
     gl->BindVertexArray(0);
 }
 
-void cu_pass_sun_update(cu_pass_sun *p, const cu_gpu_scene *ctx)
+void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, cu_sun_maps *out)
 {
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_CULL_FACE);
     gl->Disable(GL_BLEND);
-    p->out.intervals = 0;
+    out->intervals = 0;
     if (p->method == CU_SHADOW_FRONT) {
-        draw_front(p, ctx);
+        draw_front(p, ctx, map);
         return;
     }
     int tiles = p->tiles; /* osm, fom: all tiles of their one target (no interval bookkeeping) */
     if (p->method == CU_SHADOW_PEEL) {
         /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
         int J = cu_sun_max_intervals(ctx->cloud, ctx->sun_dir, 64), most = ctx->scene->sun_intervals;
-        tiles = p->out.intervals = J < 1 ? 1 : J > most ? most : J;
+        tiles = out->intervals = J < 1 ? 1 : J > most ? most : J;
         if (J > most)
             cu_gpu_log(ctx, CU_LOG_INFO, "sun rays cross up to %d cloud intervals; the map keeps the first %d "
                                          "(light.sun_intervals)", J, most);
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, p->map.fbo);
+    gl->BindFramebuffer(GL_FRAMEBUFFER, map->fbo);
     gl->Viewport(0, 0, ctx->sun_size * tiles, ctx->sun_size);
     gl->Disable(GL_DEPTH_TEST);
     gl->UseProgram(p->prog);

@@ -11,15 +11,17 @@ typedef struct cu_pass_sun {
     cu_density_locs density;
     cu_sun_locs sun;
     GLint viewproj;       /* front only */
-    cu_target map;        /* front: the depth map; osm, fom: tiles; peel: interval layers [0] and tau [1] */
+    cu_target_desc map_desc; /* each cloud's map (front: the depth map; osm, fom: tiles; peel: interval layers [0]
+                                and tau [1]) */
     int tiles;            /* osm: 1 + slices / 4; fom: 1 + N / 2 for N coefficients; peel: the most intervals */
-    cu_sun_maps out;      /* what the cloud pass reads (published into the frame context by the renderer) */
 } cu_pass_sun;
 
-/* Builds the program (hull_defs for the front map's hull program, fs_defs for the full-screen ones) and the map. */
+/* Builds the program (hull_defs for the front map's hull program, fs_defs for the full-screen ones). */
 int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
                        cu_error *err);
 void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl);
-/* Renders the map for ctx's sun direction and updates p->out. */
-void cu_pass_sun_update(cu_pass_sun *p, const cu_gpu_scene *ctx);
+/* A cloud's map (the cloud owns it: cu_target_delete) and what the cloud pass reads of it. */
+int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, cu_target *map, cu_sun_maps *out, cu_error *err);
+/* Renders ctx->cloud's map for ctx's sun direction and updates out. */
+void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, cu_sun_maps *out);
 #endif

@@ -70,7 +70,9 @@ int cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err)
     ctx->log = r->desc.log;
     ctx->log_user = r->desc.log_user;
     ctx->scene = &r->scene;
-    ctx->cloud = &r->cloud;
+    ctx->cloud = &r->none;
+    ctx->ke_scale = 1;
+    ctx->num_ell = 1;
     ctx->sky = &r->sky;
     ctx->noise = &r->noise;
     /* GLES 3.0 core cannot render to float colour targets; EXT_color_buffer_float / _half_float add it. Desktop GL
@@ -103,7 +105,16 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_sky_destroy(&r->pass_sky, gl);
     cu_pass_tonemap_destroy(&r->pass_tonemap, gl);
     cu_pass_slab_destroy(&r->pass_slab, gl);
+    cu_cloud_set_free(&r->clouds, gl);
+    free(r->order);
+    free(r->order_key);
+    free(r->cams);
+    r->order = NULL;
+    r->order_key = NULL;
+    r->cams = NULL;
     cu_upload_delete(&r->ctx);
+    r->ctx.cloud = &r->none;
+    r->ctx.hull_vao = 0;
     memset(&r->ctx.sun, 0, sizeof r->ctx.sun);
     memset(&r->ctx.slab, 0, sizeof r->ctx.slab);
 }
@@ -136,7 +147,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, cu_error *err)
              "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
              "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n"
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n",
-             s->n_ellipsoids, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
+             c->num_ell, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, c->shadow == CU_SHADOW_PEEL, s->sun_intervals,
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients);
@@ -155,14 +166,12 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
     shader_defs d;
     if (build_defines(r, &d, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
         return 1;
-    ctx->slab = r->pass_slab.out;
     if (cu_pass_sun_create(&r->pass_sun, ctx, d.hull, d.fs, err) ||
         cu_pass_cloud_create(&r->pass_cloud, ctx, d.hull, d.fs, err) ||
         cu_pass_energy_create(&r->pass_energy, ctx, phase, d.fs, err) ||
         cu_pass_sky_create(&r->pass_sky, ctx, d.fs, err) ||
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err))
         return 1;
-    ctx->sun = r->pass_sun.out;
     ctx->ms_gain[0] = r->pass_energy.gain[0];
     ctx->ms_gain[1] = r->pass_energy.gain[1];
     return 0;
@@ -180,7 +189,18 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         r->noise_ready = 1;
     }
     cu_upload_noise(ctx, &r->noise);
-    cu_cloud_build(&r->cloud, &r->scene, &r->noise);
+    if (cu_cloud_set_build(&r->clouds, &r->scene, &r->noise, err))
+        return 1;
+    r->time = r->scene.time;
+    size_t n = (size_t)(r->clouds.n > 0 ? r->clouds.n : 1);
+    r->order = malloc(sizeof *r->order * n);
+    r->order_key = malloc(sizeof *r->order_key * n);
+    r->cams = malloc(sizeof *r->cams * n);
+    if (!r->order || !r->order_key || !r->cams)
+        return cu_fail(err, "clouds: out of memory");
+    ctx->num_ell = r->clouds.num_ell;
+    memset(&r->none, 0, sizeof r->none);
+    ctx->cloud = &r->none;
     cu_sky_compute(&r->sky, &r->scene);
     ctx->shadow = r->scene.shadow;
     if (ctx->shadow != CU_SHADOW_FRONT && !ctx->float_rt) {
@@ -199,14 +219,20 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         return 1;
     for (int c = 0; c < 3; c++)
         ctx->peak_f[c] = t.f[c];
-    r->cloud.ke = cu_phase_table_extinction(&t, &r->scene); /* the table's sigma_ext wins (DESIGN.md) */
+    /* The table's sigma_ext wins (DESIGN.md): every cloud's core extinction, scaled from the droplets' 2 pi r_e^2. */
+    double sigma_geo = cu_scene_extinction_at(&r->scene, 1.0); /* m^-1 per cm^-3; r_e > 0, so > 0 */
+    double sigma = t.sigma_ext_um2[1] > 0 ? 1e6 * t.sigma_ext_um2[1] * 1e-12 : sigma_geo;
+    for (int i = 0; i < r->clouds.n; i++) {
+        cu_cloud_slot *sl = &r->clouds.slot[i];
+        sl->ke_rest = sigma_geo > 0 ? sl->ke_rest * (sigma / sigma_geo) : 0;
+        sl->cloud.ke = sl->ke_rest;
+    }
     int rc = cu_upload_phase(ctx, &t, err) || cu_pass_slab_load(&r->pass_slab, ctx, r->data_dir, &ctx->ms_mode, err) ||
              create_passes(r, &t, err) || cu_upload_hulls(ctx, err);
     cu_phase_table_free(&t);
     if (rc)
         return 1;
     r->sun_dirty = 1;
-    r->sky_slab_dirty = 1;
     r->has_scene = 1;
     GLenum e = r->gl.GetError();
     if (e != GL_NO_ERROR)
@@ -232,7 +258,7 @@ int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg
     if (r->scene.sun_azimuth < 0)
         r->scene.sun_azimuth += 360.0;
     cu_sky_compute(&r->sky, &r->scene);
-    r->sun_dirty = 1;
+    r->sun_dirty = 1; /* each cloud's maps follow by themselves (cloud_maps compares their sun) */
     return 0;
 }
 
@@ -247,41 +273,73 @@ void cu_renderer_get_sun(const cu_renderer *r, double *el, double *az)
     *az = r->scene.sun_azimuth;
 }
 
-/* Everything seen from the sun, redone only when the sun or the clouds change; each pass publishes its maps into
- * the frame context for the passes after it. The zenith slab map depends on the clouds alone. */
-static void sun_passes(cu_renderer *r)
+/* Points the frame context at cloud i: what the passes read of "the cloud". */
+static void bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
 {
     cu_gpu_scene *ctx = &r->ctx;
+    ctx->cloud = &sl->cloud;
+    ctx->hull_vao = sl->vao;
+    ctx->sun = sl->sun;
+    ctx->slab = sl->slab;
+    ctx->ke_scale = sl->factor;
     cu_gpu_scene_set_sun(ctx);
-    cu_pass_sun_update(&r->pass_sun, ctx);
-    ctx->sun = r->pass_sun.out;
-    cu_pass_slab_update(&r->pass_slab, ctx, 0);
-    if (r->sky_slab_dirty)
-        cu_pass_slab_update(&r->pass_slab, ctx, 1);
-    r->sky_slab_dirty = 0;
-    ctx->slab = r->pass_slab.out;
-    cu_pass_energy_update(&r->pass_energy, ctx);
-    ctx->ms_gain[0] = r->pass_energy.gain[0];
-    ctx->ms_gain[1] = r->pass_energy.gain[1];
-    r->sun_dirty = 0;
 }
 
-/* The frame's camera: the host's matrices, or the scene's [camera] through exactly the float matrices
+/* A cloud's GL objects, made the first time it is drawn: a field of thousands of clouds pays for the ones seen. */
+static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
+{
+    if (sl->has_maps)
+        return 0;
+    cu_gpu_scene *ctx = &r->ctx;
+    cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
+    if (cu_pass_sun_map_create(&r->pass_sun, &r->gl, &sl->sun_map, &sl->sun, err) ||
+        cu_pass_slab_maps_create(&r->pass_slab, ctx, sl->slab_map, &sl->slab, err))
+        return 1;
+    sl->has_maps = 1;
+    return 0;
+}
+
+/* Cloud sl's maps seen from the sun (and the zenith), remade when the sun moved or the cloud took a new look; made
+ * at its mature density (ke_scale 1): the shaders scale the optical depths they read by the density now. */
+static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    if (cloud_objects(r, sl, err))
+        return 1;
+    if (sl->maps_valid && v3_dot(sl->maps_sun, ctx->sky->sun_dir) > 1.0 - 1e-12 && sl->zenith_valid)
+        return 0;
+    double f = sl->factor;
+    sl->factor = 1;
+    bind_cloud(r, sl);
+    sl->cloud.ke = sl->ke_rest;
+    cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, &sl->sun);
+    ctx->sun = sl->sun;
+    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, &sl->slab);
+    if (!sl->zenith_valid)
+        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
+    sl->zenith_valid = 1;
+    sl->maps_valid = 1;
+    sl->maps_sun = ctx->sky->sun_dir;
+    sl->factor = f;
+    return 0;
+}
+
+/* The frame's view and projection: the host's matrices, or the scene's [camera] through exactly the float matrices
  * cu_scene_camera_matrices gives a host, so both are one image by construction (camera.c replaces the depth
  * planes, so the ones asked for here do not matter). */
-static int frame_camera(const cu_renderer *r, const cu_frame *f, cu_camera *c, cu_error *err)
+static int frame_matrices(const cu_renderer *r, const cu_frame *f, mat4 *view, mat4 *proj, cu_error *err)
 {
-    const cu_scene *s = &r->scene;
-    double hull_r = r->cloud.bound_radius * cu_hull_scale(s->hull_tessellation);
-    float view[16], proj[16];
-    const float *v = f->view, *p = f->projection;
-    if (!v) {
-        if (cu_scene_camera_matrices(s, (double)f->width / f->height, 1.0, 2.0, view, proj, err))
+    float v[16], p[16];
+    if (!f->view) {
+        if (cu_scene_camera_matrices(&r->scene, (double)f->width / f->height, 1.0, 2.0, v, p, err))
             return 1;
-        v = view;
-        p = proj;
+        *view = cu_camera_mat4(v);
+        *proj = cu_camera_mat4(p);
+        return 0;
     }
-    return cu_camera_build(c, cu_camera_mat4(v), cu_camera_mat4(p), r->cloud.origin, hull_r, err);
+    *view = cu_camera_mat4(f->view);
+    *proj = cu_camera_mat4(f->projection);
+    return 0;
 }
 
 static int check_frame(const cu_frame *f, cu_error *err)
@@ -293,11 +351,68 @@ static int check_frame(const cu_frame *f, cu_error *err)
     return 0;
 }
 
+/* The clouds this frame sees (frustum-culled on each cloud's own bounds; dissolved and zero-density clouds cannot
+ * change a pixel), each with its camera, sorted back to front (Kol Ch. 4: "OpenGL taking care of blending by
+ * rendering them in a back-to-front order"). Returns how many. */
+static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
+{
+    int n = 0;
+    double k = cu_hull_scale(r->scene.hull_tessellation);
+    for (int i = 0; i < r->clouds.n; i++) {
+        cu_cloud_slot *sl = &r->clouds.slot[i];
+        if (!(sl->factor * sl->ke_rest > 0) || sl->cloud.n == 0)
+            continue;
+        cu_camera *c = &r->cams[i];
+        if (cu_camera_build(c, view, proj, sl->cloud.origin, sl->cloud.bound_radius * k, err))
+            return -1;
+        if (!c->visible)
+            continue;
+        /* perspective: the eye's distance from the cloud's centre (pos is cloud-local); orthographic: how far along
+         * the view direction the centre lies */
+        r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir) : v3_dot(c->pos, c->pos);
+        r->order[n++] = i;
+    }
+    /* insertion sort by decreasing distance: the order changes little from frame to frame */
+    for (int a = 1; a < n; a++) {
+        int v = r->order[a], b = a;
+        while (b > 0 && r->order_key[r->order[b - 1]] < r->order_key[v]) {
+            r->order[b] = r->order[b - 1];
+            b--;
+        }
+        r->order[b] = v;
+    }
+    return n;
+}
+
+/* The energy closure's gains: one pair for the scene (a field of clouds shares it, pass_energy.c), measured on the
+ * largest cloud in view. */
+static void energy_closure(cu_renderer *r, int visible)
+{
+    int best = -1;
+    for (int j = 0; j < visible; j++) {
+        int i = r->order[j];
+        if (best < 0 || r->clouds.slot[i].cloud.bound_radius > r->clouds.slot[best].cloud.bound_radius)
+            best = i;
+    }
+    if (best < 0)
+        return;
+    cu_cloud_slot *sl = &r->clouds.slot[best];
+    double f = sl->factor;
+    sl->factor = 1;
+    bind_cloud(r, sl);
+    cu_pass_energy_update(&r->pass_energy, &r->ctx);
+    sl->factor = f;
+    r->ctx.ms_gain[0] = r->pass_energy.gain[0];
+    r->ctx.ms_gain[1] = r->pass_energy.gain[1];
+    r->sun_dirty = 0;
+}
+
 static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
 {
     cu_gl *gl = &r->gl;
     cu_gpu_scene *ctx = &r->ctx;
-    if (frame_camera(r, f, &ctx->camera, err) ||
+    mat4 view, proj;
+    if (frame_matrices(r, f, &view, &proj, err) ||
         cu_pass_tonemap_resize(&r->pass_tonemap, ctx, f->width, f->height, f->linear, err))
         return 1;
     ctx->hdr_format = r->pass_tonemap.hdr.format;
@@ -305,8 +420,19 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     ctx->height = f->height;
     ctx->host_depth.tex = f->depth_texture;
     ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
+    int visible = visible_clouds(r, view, proj, err);
+    if (visible < 0)
+        return 1;
+    /* Everything seen from the sun first (it draws into the maps' own targets). */
+    for (int j = 0; j < visible; j++)
+        if (cloud_maps(r, &r->clouds.slot[r->order[j]], err))
+            return 1;
     if (r->sun_dirty)
-        sun_passes(r);
+        energy_closure(r, visible);
+    /* The sky's camera: the view's directions alone (the world origin as the cloud frame). */
+    ctx->cloud = &r->none;
+    if (cu_camera_build(&ctx->camera, view, proj, v3(0, 0, 0), 1.0, err))
+        return 1;
 
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
     gl->Viewport(0, 0, f->width, f->height);
@@ -320,12 +446,39 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
     if (!f->clouds_only)
         cu_pass_sky_draw(&r->pass_sky, ctx);
-    cu_pass_cloud_draw(&r->pass_cloud, ctx);
+    for (int j = 0; j < visible; j++) {
+        cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
+        bind_cloud(r, sl);
+        sl->cloud.ke = sl->ke_rest;
+        ctx->camera = r->cams[r->order[j]];
+        if (j > 0) /* each cloud's depth pre-pass and stencil of its own */
+            gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        cu_pass_cloud_draw(&r->pass_cloud, ctx);
+    }
+    /* The context keeps the nearest cloud's camera (what tests and a debugger see of "this frame"), or says that no
+     * cloud was in view. */
+    if (visible == 0)
+        ctx->camera.visible = 0;
+    ctx->ke_scale = 1;
     cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR)
         return cu_fail(err, "render: GL error 0x%x", e);
     return 0;
+}
+
+int cu_renderer_set_time(cu_renderer *r, double t, cu_error *err)
+{
+    if (!isfinite(t) || fabs(t) > 1e9)
+        return cu_fail(err, "time: must be finite and within 1e9 s, got %g", t);
+    r->time = t;
+    cu_cloud_set_at_time(&r->clouds, t);
+    return 0;
+}
+
+double cu_renderer_get_time(const cu_renderer *r)
+{
+    return r->time;
 }
 
 int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)

@@ -2,6 +2,7 @@
  * what is dirty. Only renderer.c (and tests that look inside) include it; no pass does. */
 #ifndef CU_RENDERER_H
 #define CU_RENDERER_H
+#include "cloud_set.h"
 #include "gpu_scene.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
@@ -21,8 +22,13 @@ struct cu_renderer {
     cu_scene scene;
     cu_noise noise;
     int noise_ready;
-    cu_cloud cloud;
+    cu_cloud_set clouds;  /* every cloud of the scene, with its maps */
+    cu_cloud none;        /* what ctx->cloud points at between clouds: empty */
     cu_sky sky;
+    double time;          /* the scene time the clouds are at (s) */
+    int *order;           /* this frame's visible clouds, back to front (clouds.n) */
+    double *order_key;
+    cu_camera *cams;      /* each cloud's camera this frame */
 
     cu_gpu_scene ctx;     /* what the passes read: points at the above, holds the uploaded objects */
     cu_pass_sun pass_sun;
@@ -32,7 +38,6 @@ struct cu_renderer {
     cu_pass_cloud pass_cloud;
     cu_pass_tonemap pass_tonemap;
 
-    int sun_dirty;        /* the sun moved or the scene changed: the passes seen from the sun are redone */
-    int sky_slab_dirty;   /* the scene changed: the slab map from the zenith is redone */
+    int sun_dirty;        /* the sun moved or the scene changed: the energy closure is measured again */
 };
 #endif

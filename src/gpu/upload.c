@@ -45,11 +45,9 @@ int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err)
     return 0;
 }
 
-/* Attributes at hull.vert's layout locations: a_pos 0, a_center 1, a_radii 2 (per instance). */
 int cu_upload_hulls(cu_gpu_scene *ctx, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
-    const cu_cloud *cl = ctx->cloud;
     int nv, ni, tess = ctx->scene->hull_tessellation;
     cu_hull_mesh(tess, NULL, NULL, &nv, &ni);
     float *v = malloc(sizeof(float) * 3 * (size_t)nv);
@@ -61,6 +59,24 @@ int cu_upload_hulls(cu_gpu_scene *ctx, cu_error *err)
     }
     cu_hull_mesh(tess, v, idx, &nv, &ni);
     ctx->hull_indices = ni;
+    gl->GenBuffers(1, &ctx->hull_vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, ctx->hull_vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 3 * (size_t)nv), v, GL_STATIC_DRAW);
+    gl->GenBuffers(1, &ctx->hull_ibo);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->hull_ibo);
+    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint16_t) * (size_t)ni), idx, GL_STATIC_DRAW);
+    gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+    /* Desktop core profiles need a bound VAO even for attribute-less full-screen draws. */
+    gl->GenVertexArrays(1, &ctx->empty_vao);
+    free(v);
+    free(idx);
+    return 0;
+}
+
+/* Attributes at hull.vert's layout locations: a_pos 0, a_center 1, a_radii 2 (per instance). */
+void cu_upload_instances(const cu_gpu_scene *ctx, const cu_cloud *cl, GLuint *vbo, GLuint *vao)
+{
+    const cu_gl *gl = ctx->gl;
     float inst[CU_MAX_ELLIPSOIDS * 8];
     for (int i = 0; i < cl->n; i++) {
         inst[8 * i + 0] = (float)cl->c[i].x;
@@ -72,31 +88,23 @@ int cu_upload_hulls(cu_gpu_scene *ctx, cu_error *err)
         inst[8 * i + 6] = (float)cl->r[i].z;
         inst[8 * i + 7] = 1;
     }
-    gl->GenVertexArrays(1, &ctx->hull_vao);
-    gl->BindVertexArray(ctx->hull_vao);
-    gl->GenBuffers(1, &ctx->hull_vbo);
+    gl->GenVertexArrays(1, vao);
+    gl->BindVertexArray(*vao);
     gl->BindBuffer(GL_ARRAY_BUFFER, ctx->hull_vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 3 * (size_t)nv), v, GL_STATIC_DRAW);
     gl->EnableVertexAttribArray(0);
     gl->VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, 0);
-    gl->GenBuffers(1, &ctx->inst_vbo);
-    gl->BindBuffer(GL_ARRAY_BUFFER, ctx->inst_vbo);
-    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 8 * (size_t)cl->n), inst, GL_STATIC_DRAW);
+    gl->GenBuffers(1, vbo);
+    gl->BindBuffer(GL_ARRAY_BUFFER, *vbo);
+    gl->BufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(sizeof(float) * 8 * (size_t)(cl->n > 0 ? cl->n : 1)), inst,
+                   GL_STATIC_DRAW);
     gl->EnableVertexAttribArray(1);
     gl->VertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 8 * sizeof(float), 0);
     gl->VertexAttribDivisor(1, 1);
     gl->EnableVertexAttribArray(2);
     gl->VertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 8 * sizeof(float), (const void *)(4 * sizeof(float)));
     gl->VertexAttribDivisor(2, 1);
-    gl->GenBuffers(1, &ctx->hull_ibo);
     gl->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ctx->hull_ibo);
-    gl->BufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(sizeof(uint16_t) * (size_t)ni), idx, GL_STATIC_DRAW);
     gl->BindVertexArray(0);
-    /* Desktop core profiles need a bound VAO even for attribute-less full-screen draws. */
-    gl->GenVertexArrays(1, &ctx->empty_vao);
-    free(v);
-    free(idx);
-    return 0;
 }
 
 void cu_upload_delete(cu_gpu_scene *ctx)
@@ -108,14 +116,14 @@ void cu_upload_delete(cu_gpu_scene *ctx)
             gl->DeleteTextures(1, tex[i]);
             *tex[i] = 0;
         }
-    GLuint *bufs[] = {&ctx->hull_vbo, &ctx->hull_ibo, &ctx->inst_vbo};
-    for (int i = 0; i < 3; i++)
+    GLuint *bufs[] = {&ctx->hull_vbo, &ctx->hull_ibo};
+    for (int i = 0; i < 2; i++)
         if (*bufs[i]) {
             gl->DeleteBuffers(1, bufs[i]);
             *bufs[i] = 0;
         }
-    GLuint *vaos[] = {&ctx->hull_vao, &ctx->empty_vao};
-    for (int i = 0; i < 2; i++)
+    GLuint *vaos[] = {&ctx->empty_vao};
+    for (int i = 0; i < 1; i++)
         if (*vaos[i]) {
             gl->DeleteVertexArrays(1, vaos[i]);
             *vaos[i] = 0;

@@ -9,9 +9,10 @@
 void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n);
 /* The phase table (row 0: the chopped phase function, row 1: the removed peak), into ctx->phase_tex. */
 int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err);
-/* The hull mesh of ctx->scene's tessellation, one instance per ellipsoid of ctx->cloud, and an empty VAO for
- * full-screen draws, into ctx's hull fields. */
+/* The hull mesh of ctx->scene's tessellation and an empty VAO for full-screen draws, into ctx's hull fields. */
 int cu_upload_hulls(cu_gpu_scene *ctx, cu_error *err);
+/* One instance per ellipsoid of cl on the hull mesh: a buffer and the VAO that draws them (the caller owns both). */
+void cu_upload_instances(const cu_gpu_scene *ctx, const cu_cloud *cl, GLuint *vbo, GLuint *vao);
 /* Deletes all of the above and zeroes their names. */
 void cu_upload_delete(cu_gpu_scene *ctx);
 #endif

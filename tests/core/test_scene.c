@@ -68,6 +68,65 @@ static void test_comments_crlf_and_set(void **st)
     cu_scene_free(s);
 }
 
+/* Many clouds: each later [cloud] starts a cloud of the [ellipsoid] sections after it; what it does not give is the
+ * first [cloud]'s; a clear sky and a scene of layers alone are valid. */
+static void test_many_clouds(void **st)
+{
+    (void)st;
+    const char *text = "[camera]\nposition = 0 0 -3000\nlook_at = 0 0 0\n[sun]\n"
+                       "[ellipsoid]\ncenter = 0 0 0\nradii = 10 10 10\n"        /* before any [cloud]: cloud 1's */
+                       "[cloud]\ndensity = 300\nwind = 4 -2\nlifetime = 600\n"
+                       "[ellipsoid]\ncenter = 20 0 0\nradii = 10 10 10\n"
+                       "[cloud]\nboundary = 5\nnoise_offset = 1 2 3\n"
+                       "[ellipsoid]\ncenter = 500 0 0\nradii = 10 10 10\n[ellipsoid]\ncenter = 520 0 0\nradii = 9 9 9\n"
+                       "[cloud]\ndensity = 50\nwind = 0 0\n[ellipsoid]\ncenter = -500 0 0\nradii = 10 10 10\n";
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(parse(text, &s, &e), 0);
+    assert_int_equal(s->n_clouds, 3);
+    assert_int_equal(s->n_ellipsoids, 5);
+    cu_cloud_spec a = cu_scene_cloud(s, 0), b = cu_scene_cloud(s, 1), c = cu_scene_cloud(s, 2);
+    assert_int_equal(a.first, 0);
+    assert_int_equal(a.count, 2);
+    assert_int_equal(b.first, 2);
+    assert_int_equal(b.count, 2);
+    assert_int_equal(c.first, 4);
+    assert_int_equal(c.count, 1);
+    assert_true(a.density_cm3 == 300 && b.density_cm3 == 300 && c.density_cm3 == 50);
+    assert_true(a.boundary_m == 62 && b.boundary_m == 5 && c.boundary_m == 62);
+    assert_true(a.wind[0] == 4 && a.wind[1] == -2 && b.wind[0] == 4 && c.wind[0] == 0 && c.wind[1] == 0);
+    assert_true(a.lifetime == 600 && b.lifetime == 600);
+    assert_true(b.noise_offset[0] == 1 && b.noise_offset[2] == 3);
+    assert_true(a.noise_offset[0] == 0 && c.noise_offset[0] != a.noise_offset[0]); /* each its own look */
+    /* --set on the first [cloud] changes every cloud that does not say otherwise */
+    assert_int_equal(cu_scene_set(s, "cloud.density=100", &e), 0);
+    assert_true(cu_scene_cloud(s, 1).density_cm3 == 100 && cu_scene_cloud(s, 2).density_cm3 == 50);
+    cu_scene_free(s);
+
+    /* a clear sky */
+    assert_int_equal(parse("[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n", &s, &e), 0);
+    assert_int_equal(s->n_clouds, 0);
+    assert_int_equal(s->n_layers, 0);
+    cu_scene_free(s);
+    /* layers, and --set layer.N.key */
+    assert_int_equal(parse("[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[layer]\ncoverage = 0.2\n"
+                           "[layer]\ntype = cumulus-congestus\nbase = 2000\nwind = 3 4\nseed = 9\n",
+                           &s, &e), 0);
+    assert_int_equal(s->n_clouds, 0);
+    assert_int_equal(s->n_layers, 2);
+    assert_true(s->layers[0].coverage == 0.2 && s->layers[0].base == 1000 && s->layers[1].base == 2000);
+    assert_int_equal(s->layers[1].type, 2);
+    assert_int_equal(s->layers[1].seed, 9);
+    assert_true(s->layers[1].wind[1] == 4);
+    assert_int_equal(cu_scene_set(s, "layer.2.coverage=0.5", &e), 0);
+    assert_true(s->layers[1].coverage == 0.5);
+    assert_int_not_equal(cu_scene_set(s, "layer.3.coverage=0.5", &e), 0);
+    assert_string_equal(e.msg, "--set layer.3.coverage=0.5: use layer.N.key with N from 1 to 2");
+    assert_int_not_equal(cu_scene_set(s, "layer.1.coverage=2", &e), 0);
+    assert_true(s->layers[0].coverage == 0.2); /* all or nothing */
+    cu_scene_free(s);
+}
+
 typedef struct bad_case {
     const char *text;
     const char *message;
@@ -77,7 +136,20 @@ typedef struct bad_case {
 static const bad_case bad[] = {
     {"", "t.scene:1:1: empty scene file"},
     {"# only a comment\n\n", "t.scene:1:1: empty scene file"},
-    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n", "t.scene: missing section [ellipsoid] (a cloud needs at least one)"},
+    /* many clouds: each later [cloud] starts one, needs its own ellipsoids, and may not change what every cloud
+     * shares */
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 1 1\n[cloud]\n[cloud]\n[ellipsoid]\ncenter = 5 0 0\nradii = 1 1 1\n",
+     "t.scene:9:1: [cloud] #2 has no [ellipsoid]"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 1 1\n[cloud]\nphase = hg\n",
+     "t.scene:10:1: 'phase' is shared by every cloud: set it in the first [cloud] section"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 1 1\n[cloud]\nwind = 1 2 3\n",
+     "t.scene:10:8: 'wind' needs 2 numbers, got more"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 1 1\n[cloud]\ndensity = -1\n",
+     "t.scene:10:11: 'density' must be in [0, 1e+07] cm^-3, got -1"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[layer]\ncoverage = 1.5\n", "t.scene:6:12: 'coverage' must be in [0, 1], got 1.5"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[layer]\ntype = stratus\n",
+     "t.scene:6:8: 'type' must be one of cumulus-humilis | cumulus-mediocris | cumulus-congestus, got 'stratus'"},
+    {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[scene]\ntime = nan\n", "t.scene:6:8: 'time' is NaN"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[cloud]\n[ellipsoid]\ncenter=0 0 0\nradii=1 1 1\n", "t.scene: missing section [sun]"},
     {"[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 200 120\n",
      "t.scene:8:9: 'radii' needs 3 numbers, got 2"},
@@ -287,7 +359,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_minimal_and_defaults), cmocka_unit_test(test_good_default_scene_file),
-        cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_comments_crlf_and_set),    cmocka_unit_test(test_bad_inputs), cmocka_unit_test(test_many_clouds),
         cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_presets),
         cmocka_unit_test(test_set_cross_field),       cmocka_unit_test(test_bom_and_control_bytes),

@@ -2,6 +2,7 @@
 #include "scene_check.h"
 #include "fuzz.h"
 #include "scene_keys.h"
+#include "scene_write.h"
 #include <math.h>
 
 static void check_keys(const void *base, const cu_scene_key *keys, int n, const char *where)
@@ -32,59 +33,27 @@ static void check_keys(const void *base, const cu_scene_key *keys, int n, const 
 void fuzz_scene_check(const cu_scene *s)
 {
     FUZZ_CHECK(memchr(s->name, 0, sizeof s->name), "name not terminated");
-    FUZZ_CHECK(s->n_ellipsoids >= 1 && s->n_ellipsoids <= CU_MAX_ELLIPSOIDS, "%d ellipsoids", s->n_ellipsoids);
+    FUZZ_CHECK(s->n_ellipsoids >= 0 && s->n_ellipsoids <= CU_MAX_SCENE_ELLIPSOIDS, "%d ellipsoids", s->n_ellipsoids);
+    FUZZ_CHECK(s->n_clouds >= 0 && s->n_clouds <= CU_MAX_CLOUDS, "%d clouds", s->n_clouds);
+    FUZZ_CHECK(s->n_layers >= 0 && s->n_layers <= CU_MAX_LAYERS, "%d layers", s->n_layers);
+    int next = 0;
+    for (int c = 0; c < s->n_clouds; c++) { /* the clouds partition the ellipsoids, in order, none empty */
+        FUZZ_CHECK(s->clouds[c].first == next && s->clouds[c].count >= 1 && s->clouds[c].count <= CU_MAX_ELLIPSOIDS,
+                   "cloud %d: ellipsoids %d+%d after %d", c, s->clouds[c].first, s->clouds[c].count, next);
+        next += s->clouds[c].count;
+        check_keys(&s->clouds[c], cu_cloud_keys, CU_CLOUD_KEY_COUNT, "cloud");
+    }
+    FUZZ_CHECK(next == s->n_ellipsoids, "clouds hold %d of %d ellipsoids", next, s->n_ellipsoids);
     check_keys(s, cu_scene_keys, CU_SCENE_KEY_COUNT, "scene");
     for (int e = 0; e < s->n_ellipsoids; e++)
         check_keys(&s->ell[e], cu_ellipsoid_keys, CU_ELLIPSOID_KEY_COUNT, "ellipsoid");
-}
-
-/* Appends "key = value" of every key of keys[0..n-1] held in base. */
-static int write_keys(const void *base, const cu_scene_key *keys, int n, const char *section, char **p, char *end)
-{
-    for (int i = 0; i < n; i++) {
-        const cu_scene_key *k = &keys[i];
-        if (strcmp(k->section, section) || (k->given && !*(const int *)((const char *)base + k->given)))
-            continue; /* another section's, or an optional key the scene does not give */
-        const char *v = (const char *)base + k->offset;
-        int w = snprintf(*p, (size_t)(end - *p), "%s =", k->name);
-        if (w < 0 || w >= end - *p)
-            return 1;
-        *p += w;
-        for (int c = 0; c < (k->values ? 1 : k->count); c++) {
-            if (k->values)
-                w = snprintf(*p, (size_t)(end - *p), " %s", k->values[*(const int *)v]);
-            else if (k->type == CU_KEY_INTEGER)
-                w = snprintf(*p, (size_t)(end - *p), " %d", ((const int *)v)[c]);
-            else
-                w = snprintf(*p, (size_t)(end - *p), " %.17g", ((const double *)v)[c]);
-            if (w < 0 || w >= end - *p)
-                return 1;
-            *p += w;
-        }
-        if (end - *p < 2)
-            return 1;
-        *(*p)++ = '\n';
-    }
-    return 0;
+    for (int l = 0; l < s->n_layers; l++)
+        check_keys(&s->layers[l], cu_layer_keys, CU_LAYER_KEY_COUNT, "layer");
 }
 
 size_t fuzz_scene_write(const cu_scene *s, char *buf, size_t cap)
 {
-    char *p = buf, *end = buf + cap;
-    for (int i = 0; i < CU_SCENE_SECTION_COUNT; i++) {
-        const cu_scene_section *sec = &cu_scene_sections[i];
-        int instances = sec->repeated ? s->n_ellipsoids : 1;
-        for (int e = 0; e < instances; e++) {
-            int w = snprintf(p, (size_t)(end - p), "[%s]\n", sec->name);
-            if (w < 0 || w >= end - p)
-                return 0;
-            p += w;
-            if (sec->repeated ? write_keys(&s->ell[e], cu_ellipsoid_keys, CU_ELLIPSOID_KEY_COUNT, sec->name, &p, end)
-                              : write_keys(s, cu_scene_keys, CU_SCENE_KEY_COUNT, sec->name, &p, end))
-                return 0;
-        }
-    }
-    return (size_t)(p - buf);
+    return cu_scene_format(s, buf, cap);
 }
 
 /* The parsed copy holds the same values: everything the keys store (the name and the given-flags aside). */
@@ -100,7 +69,7 @@ static void check_same(const void *a, const void *b, const cu_scene_key *keys, i
 
 int fuzz_scene_roundtrip(const cu_scene *s, char *why, size_t whylen)
 {
-    static char buf[64 * 1024];
+    static char buf[4 << 20];
     size_t len = fuzz_scene_write(s, buf, sizeof buf);
     FUZZ_CHECK(len > 0, "the scene does not fit in %zu bytes", sizeof buf);
     cu_scene *t;
@@ -110,9 +79,18 @@ int fuzz_scene_roundtrip(const cu_scene *s, char *why, size_t whylen)
         return 0;
     }
     FUZZ_CHECK(t->n_ellipsoids == s->n_ellipsoids, "%d ellipsoids read back as %d", s->n_ellipsoids, t->n_ellipsoids);
+    FUZZ_CHECK(t->n_clouds == s->n_clouds && t->n_layers == s->n_layers, "%d clouds, %d layers read back as %d, %d",
+               s->n_clouds, s->n_layers, t->n_clouds, t->n_layers);
     check_same(s, t, cu_scene_keys, CU_SCENE_KEY_COUNT);
     for (int e = 0; e < s->n_ellipsoids; e++)
         check_same(&s->ell[e], &t->ell[e], cu_ellipsoid_keys, CU_ELLIPSOID_KEY_COUNT);
+    for (int l = 0; l < s->n_layers; l++)
+        check_same(&s->layers[l], &t->layers[l], cu_layer_keys, CU_LAYER_KEY_COUNT);
+    for (int c = 0; c < s->n_clouds; c++) { /* resolved: a value given twice the same way reads back the same */
+        cu_cloud_spec a = cu_scene_cloud(s, c), b = cu_scene_cloud(t, c);
+        FUZZ_CHECK(a.first == b.first && a.count == b.count, "cloud %d's ellipsoids change", c);
+        check_same(&a, &b, cu_cloud_keys, CU_CLOUD_KEY_COUNT);
+    }
     cu_scene_free(t);
     return 1;
 }

@@ -38,7 +38,7 @@ static void read_map(tr_ctx *c, const char *scene, const char *const *sets, map 
     void *rb = c->be->get_proc_address(c->disp, "glReadBuffer");
     void (*read_buffer)(GLenum);
     memcpy(&read_buffer, &rb, sizeof rb);
-    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->pass_sun.map.fbo);
+    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->clouds.slot[0].sun_map.fbo);
     read_buffer(GL_COLOR_ATTACHMENT0);
     r->gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, m->layers);
     read_buffer(GL_COLOR_ATTACHMENT1);
@@ -62,7 +62,7 @@ static void free_map(map *m)
 static void texel_ray(const map *m, int x, int y, vec3 *o, vec3 *d)
 {
     const cu_renderer *r = m->r;
-    double R = cu_sun_radius(&r->cloud);
+    double R = cu_sun_radius(&r->clouds.slot[0].cloud);
     double u = ((x + 0.5) / m->size * 2 - 1) * R, v = ((y + 0.5) / m->size * 2 - 1) * R;
     *o = v3_add(v3_add(v3_scale(r->ctx.sun_right, u), v3_scale(r->ctx.sun_up, v)), v3_scale(r->sky.sun_dir, 2 * R));
     *d = v3_scale(r->sky.sun_dir, -1);
@@ -84,7 +84,7 @@ static int check_layers(const map *m, const char *label)
             vec3 o, d;
             texel_ray(m, x, y, &o, &d);
             double a[8], b[8];
-            int n = cu_union_intervals(&m->r->cloud, o, d, a, b, 8);
+            int n = cu_union_intervals(&m->r->clouds.slot[0].cloud, o, d, a, b, 8);
             int keep = n < m->tiles ? n : m->tiles;
             for (int j = 0; j < m->tiles; j++) {
                 const float *l = at(m, m->layers, x, y, j);
@@ -117,13 +117,13 @@ static int check_layers(const map *m, const char *label)
 static double cpu_tau(const map *m, vec3 o, vec3 d, double t)
 {
     double a[8], b[8], tau = 0;
-    int n = cu_union_intervals(&m->r->cloud, o, d, a, b, 8);
+    int n = cu_union_intervals(&m->r->clouds.slot[0].cloud, o, d, a, b, 8);
     for (int j = 0; j < n && j < 8 && a[j] < t; j++) {
         double hi = b[j] < t ? b[j] : t;
         int steps = (int)ceil((hi - a[j]) / 0.25);
         double step = (hi - a[j]) / steps;
         for (int i = 0; i < steps; i++)
-            tau += step * cu_cloud_extinction(&m->r->cloud, v3_add(o, v3_scale(d, a[j] + (i + 0.5) * step)));
+            tau += step * cu_cloud_extinction(&m->r->clouds.slot[0].cloud, v3_add(o, v3_scale(d, a[j] + (i + 0.5) * step)));
     }
     return tau;
 }
@@ -150,7 +150,7 @@ static void check_tau(const map *m, const char *label, double tol, double *map_e
                     vec3 p = v3_add(o, v3_scale(d, t));
                     double truth = cpu_tau(m, o, d, t);
                     double got = before + q[k - 1];
-                    double kol = (t - front) * cu_cloud_extinction(&m->r->cloud, p);
+                    double kol = (t - front) * cu_cloud_extinction(&m->r->clouds.slot[0].cloud, p);
                     double e = fabs(got - truth) / fmax(truth, 1.0);
                     worst = fmax(worst, e);
                     worst_front = fmax(worst_front, fabs(kol - truth) / fmax(truth, 1.0));
@@ -212,7 +212,7 @@ static void read_smap(tr_ctx *c, const char *scene, const char *const *sets, int
                                                        : 1 + r->scene.fom_coefficients / 2);
     int w = m->size * m->tiles, h = m->size;
     m->img = malloc(sizeof(float) * 4 * (size_t)w * h);
-    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->pass_sun.map.fbo);
+    r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->clouds.slot[0].sun_map.fbo);
     r->gl.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, m->img);
     assert_int_equal(r->gl.GetError(), GL_NO_ERROR);
     for (long i = 0; i < 4L * w * h; i++)

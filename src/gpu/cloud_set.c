@@ -1,0 +1,145 @@
+/* src/gpu/cloud_set.c: the renderer's clouds (see cloud_set.h): written ones from the scene, generated ones from its
+ * [layer]s, and where each is and how dense at a scene time. */
+#include "cloud_set.h"
+#include "error.h"
+#include "scene_layers.h"
+#include <stdlib.h>
+#include <string.h>
+
+int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *noise, cu_error *err)
+{
+    memset(cs, 0, sizeof *cs);
+    cs->num_ell = 1;
+    int written = cu_scene_cloud_count(s), cap = written > 0 ? written : 1;
+    cs->slot = calloc((size_t)cap, sizeof *cs->slot);
+    if (!cs->slot)
+        return cu_fail(err, "clouds: out of memory");
+    for (int i = 0; i < written; i++) {
+        cu_cloud_spec c = cu_scene_cloud(s, i);
+        cu_cloud_slot *sl = &cs->slot[cs->n++];
+        cu_cloud_build_spec(&sl->cloud, s, &c, noise);
+        sl->wind = v3(c.wind[0], 0, -c.wind[1]); /* east, north -> x, -z */
+        sl->lifetime = c.lifetime;
+        sl->life_phase = c.life_phase;
+        if (c.count > cs->num_ell)
+            cs->num_ell = c.count;
+    }
+    cu_generated g;
+    if (cu_scene_generate(s, &g, err)) {
+        free(cs->slot);
+        memset(cs, 0, sizeof *cs);
+        return 1;
+    }
+    if (g.n_clouds > 0) {
+        cu_cloud_slot *ns = realloc(cs->slot, sizeof *ns * (size_t)(cs->n + g.n_clouds));
+        if (!ns) {
+            cu_generated_free(&g);
+            free(cs->slot);
+            memset(cs, 0, sizeof *cs);
+            return cu_fail(err, "[layer]: out of memory for %d clouds", g.n_clouds);
+        }
+        cs->slot = ns;
+    }
+    for (int i = 0; i < g.n_clouds; i++) {
+        const cu_cloud_spec *c = &g.spec[i];
+        cu_cloud_slot *sl = &cs->slot[cs->n++];
+        memset(sl, 0, sizeof *sl);
+        cu_cloud_build_ellipsoids(&sl->cloud, s, &g.ell[c->first], c->count, c->density_cm3, c->boundary_m,
+                                  c->noise_offset, noise);
+        sl->wind = v3(c->wind[0], 0, -c->wind[1]);
+        sl->wrap = g.wrap[i];
+        sl->lifetime = c->lifetime;
+        sl->life_phase = c->life_phase;
+        if (c->count > cs->num_ell)
+            cs->num_ell = c->count;
+    }
+    cu_generated_free(&g);
+    for (int i = 0; i < cs->n; i++) {
+        cu_cloud_slot *sl = &cs->slot[i];
+        sl->rest = sl->cloud.origin;
+        sl->ke_rest = sl->cloud.ke;
+        sl->noise_rest = sl->cloud.noise_offset;
+        sl->factor = 1;
+    }
+    cu_cloud_set_at_time(cs, s->time);
+    return 0;
+}
+
+void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl)
+{
+    for (int i = 0; gl && i < cs->n; i++) {
+        cu_cloud_slot *sl = &cs->slot[i];
+        if (sl->vao)
+            gl->DeleteVertexArrays(1, &sl->vao);
+        if (sl->inst_vbo)
+            gl->DeleteBuffers(1, &sl->inst_vbo);
+        cu_target_delete(&sl->sun_map, gl);
+        cu_target_delete(&sl->slab_map[0], gl);
+        cu_target_delete(&sl->slab_map[1], gl);
+    }
+    free(cs->slot);
+    memset(cs, 0, sizeof *cs);
+}
+
+static double smooth01(double x)
+{
+    x = x < 0 ? 0 : x > 1 ? 1 : x;
+    return x * x * (3 - 2 * x);
+}
+
+double cu_cloud_life(double t, double lifetime, double phase, int *cycle)
+{
+    if (cycle)
+        *cycle = 0;
+    if (!(lifetime > 0))
+        return 1.0;
+    double u = t / lifetime + phase, k = floor(u), f = u - k;
+    if (cycle)
+        *cycle = (int)fmod(k, 1e6);
+    /* forms over the first fifth, dissolves over the last: smoothstep ramps, 0 with zero slope at the ends */
+    return smooth01(f / 0.2) * smooth01((1.0 - f) / 0.2);
+}
+
+double cu_cloud_border_fade(vec3 p, double wrap, double w)
+{
+    if (!(wrap > 0))
+        return 1.0;
+    double half = 0.5 * wrap, d = fmin(half - fabs(p.x), half - fabs(p.z));
+    return w > 0 ? smooth01(d / w) : 1.0;
+}
+
+/* x wrapped into [-half, half) */
+static double wrap_coord(double x, double wrap)
+{
+    return x - wrap * floor(x / wrap + 0.5);
+}
+
+void cu_cloud_set_at_time(cu_cloud_set *cs, double t)
+{
+    for (int i = 0; i < cs->n; i++) {
+        cu_cloud_slot *sl = &cs->slot[i];
+        vec3 p = v3_add(sl->rest, v3_scale(sl->wind, t));
+        double fade = 1;
+        if (sl->wrap > 0) {
+            p.x = wrap_coord(p.x, sl->wrap);
+            p.z = wrap_coord(p.z, sl->wrap);
+            /* Kol fades clouds by the distance to the sky dome; a wrapping layer fades them out before its border
+             * and in after it, over at least the cloud's size, so a cloud crossing it never pops. */
+            double w = fmax(2.0 * sl->cloud.bound_radius, 0.05 * sl->wrap);
+            fade = cu_cloud_border_fade(p, sl->wrap, fmin(w, 0.25 * sl->wrap));
+        }
+        int cycle;
+        double life = cu_cloud_life(t, sl->lifetime, sl->life_phase, &cycle);
+        sl->cloud.origin = p;
+        sl->factor = fade * life;
+        if (cycle != sl->cycle) {
+            /* A new life looks like a new cloud: another part of the noise (its maps are remade). */
+            sl->cycle = cycle;
+            double g = (double)cycle;
+            vec3 o = v3_add(sl->noise_rest, v3(0.6180339887 * g, 0.4142135624 * g, 0.7320508076 * g));
+            sl->cloud.noise_offset = v3(o.x - floor(o.x), o.y - floor(o.y), o.z - floor(o.z));
+            sl->maps_valid = 0;
+            sl->zenith_valid = 0;
+        }
+    }
+}

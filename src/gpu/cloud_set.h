@@ -1,0 +1,45 @@
+/* src/gpu/cloud_set.h: the clouds a renderer draws: the scene's written clouds and the ones its [layer]s generate,
+ * each with its own hull instances and sun and slab maps, moved by the wind and aged by its life cycle at the scene's
+ * time (Kol 3.4.7) without rebuilding anything. */
+#ifndef CU_CLOUD_SET_H
+#define CU_CLOUD_SET_H
+#include "gpu_scene.h"
+#include "target.h"
+
+typedef struct cu_cloud_slot {
+    cu_cloud cloud;            /* cloud-local geometry; cloud.origin is where the cloud is now */
+    vec3 rest;                 /* its origin at time 0 */
+    vec3 wind;                 /* m/s, world (x east, z south) */
+    double wrap;               /* m: side of the square about the world origin it wraps around (0: it does not) */
+    double lifetime, life_phase;
+    double ke_rest;            /* core extinction when mature */
+    double factor;             /* density now against mature: life cycle x border fade */
+    int cycle;                 /* which life it is in (a new life is a new look: its noise offset moves) */
+    vec3 noise_rest;           /* noise offset of life 0 */
+    GLuint inst_vbo, vao;
+    cu_target sun_map, slab_map[2];
+    cu_sun_maps sun;
+    cu_slab_maps slab;
+    int has_maps;              /* the GL objects above exist */
+    int maps_valid;            /* made for maps_sun and this look */
+    int zenith_valid;
+    vec3 maps_sun;
+} cu_cloud_slot;
+
+typedef struct cu_cloud_set {
+    cu_cloud_slot *slot;
+    int n;
+    int num_ell;               /* the largest cloud's ellipsoid count (>= 1): what the programs are built for */
+} cu_cloud_set;
+
+/* The scene's clouds, CPU side (GL objects are made when a cloud is first drawn). */
+int  cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *noise, cu_error *err);
+void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl);
+/* Positions and densities at scene time t (s). */
+void cu_cloud_set_at_time(cu_cloud_set *cs, double t);
+/* A cloud's density factor in its life: forms over the first fifth, mature, dissolves over the last fifth, smooth
+ * (C1) at both ends so nothing pops; 1 for lifetime 0. */
+double cu_cloud_life(double t, double lifetime, double phase, int *cycle);
+/* The density factor near the border of a wrapping layer: 0 on the border, 1 a fade width inside. */
+double cu_cloud_border_fade(vec3 pos, double wrap, double fade_width);
+#endif
