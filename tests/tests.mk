@@ -46,6 +46,7 @@ CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh
+CHECK_TESTS += tests/app/test_sun_cli.sh
 
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
