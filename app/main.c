@@ -1,4 +1,4 @@
-/* app/main.c: the `cumulo` program: dispatches to the subcommands render, bench and run. */
+/* app/main.c: the `cumulo` program: dispatches to the subcommands render, bench, run and sun. */
 #include "commands.h"
 #include "session.h"
 #include <stdio.h>
@@ -11,6 +11,7 @@ static void usage(FILE *f)
             "  render SCENE -o OUT.png|OUT.pfm   one frame to a PNG (tone-mapped) or PFM (linear radiance)\n"
             "  bench  SCENE [--frames N] ...     frame times, glmark2-style lines, optional CSV\n"
             "  run    SCENE --platform P ...     the interactive / kiosk loop: a display, inputs that move the sun\n"
+            "  sun    --time-utc T ...           the sun's elevation and azimuth at a UTC time and a place\n"
             "  --version                         version, display back ends and inputs of this build\n"
             "Exit status: 0 success, 1 runtime failure (bad scene file, GL or I/O error), 2 usage error.\n");
 }
@@ -36,6 +37,8 @@ int main(int argc, char **argv)
         return cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "run") == 0)
         return cmd_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "sun") == 0)
+        return cmd_sun(argc - 1, argv + 1);
     fprintf(stderr, "cumulo: unknown command '%s' (cumulo --help lists them)\n", cmd);
     return 2;
 }

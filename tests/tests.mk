@@ -27,6 +27,8 @@ $(eval $(call test_program,test_math,tests/core/test_math.c $(CORE),,$(LIB_LIBS)
 $(eval $(call test_program,test_keys,tests/core/test_keys.c $(CORE),,$(LIB_LIBS)))
 CHECK_TESTS += tests/core/test_keys.sh
 $(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB_LIBS)))
+# The sun from date, time and place (SPA) against published values, and the UTC parser on hostile text.
+$(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
@@ -44,6 +46,7 @@ CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh
+CHECK_TESTS += tests/app/test_sun_cli.sh
 
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
