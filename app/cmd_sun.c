@@ -7,11 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* src/core/solar.h: the program sees only include/cumulo.h of the library, and that does not hold the solar
- * position (yet); this is the one declaration of it the program uses, kept identical to solar.h's (test_solar checks
- * the two texts agree). */
-int cu_solar_position_at(const char *time_utc, double latitude_deg, double longitude_deg, double height_m,
-                         int refraction, double *elevation_deg, double *azimuth_deg, cu_error *err);
 
 static const char sun_help[] =
     "usage: cumulo sun --time-utc T --latitude DEG --longitude DEG [--height M] [--refraction]\n"

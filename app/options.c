@@ -44,6 +44,14 @@ int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
     case CLI_OPT_DATA_DIR:
         o->data_dir = v;
         return 1;
+    case CLI_OPT_TIME:
+        if (o->nsets == CLI_MAX_SETS || strlen(v) > 40) {
+            fprintf(stderr, "%s: --time expects seconds, got '%.40s'\n", cmd, v);
+            return -1;
+        }
+        snprintf(o->time_set, sizeof o->time_set, "scene.time=%s", v);
+        o->sets[o->nsets++] = o->time_set; /* the scene's own range check judges the value */
+        return 1;
     case CLI_OPT_SET:
         if (o->nsets == CLI_MAX_SETS) {
             fprintf(stderr, "%s: at most %d --set options\n", cmd, CLI_MAX_SETS);

@@ -74,6 +74,15 @@ double cu_renderer_get_time(const cu_renderer *r);
 /* Moves the sun (degrees); only the sun-dependent passes are redone on the next frame. */
 int  cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err);
 void cu_renderer_get_sun(const cu_renderer *r, double *elevation_deg, double *azimuth_deg);
+/* The sun from a UTC date and time (ISO 8601, "2026-06-21T12:00:00Z", offsets "+02:00" too; 1900..2100) and a place
+ * (degrees, north and east positive): the solar position (NREL's SPA, 0.0003 deg) at that time plus the scene time,
+ * so cu_renderer_set_time moves the sun too. Geometric elevation, azimuth from north toward east. */
+int  cu_renderer_set_sun_utc(cu_renderer *r, const char *time_utc, double latitude_deg, double longitude_deg,
+                             cu_error *err);
+/* The same solar position without a renderer: elevation (refraction = 1: apparent, with the standard atmosphere's
+ * refraction) and azimuth in degrees for a place at height_m above sea level. */
+int  cu_solar_position_at(const char *time_utc, double latitude_deg, double longitude_deg, double height_m,
+                          int refraction, double *elevation_deg, double *azimuth_deg, cu_error *err);
 /* The energy closure's gain on the multiple scattering the slab model reflects (transmitted = 0) or transmits (1)
  * for the current sun: 1 when the cloud sends out no more than it intercepts, or when the mode is not the slab
  * model (src/gpu/pass_energy.c). Updated by cu_render when the sun or the clouds change. */

@@ -9,6 +9,7 @@
 #define CU_MAX_CLOUDS 1024             /* written in one file ([layer] sections generate any number more) */
 #define CU_MAX_LAYERS 8
 #define CU_MAX_INTERVALS 8
+#define CU_TIME_TEXT 40                /* an ISO 8601 time with fraction and offset fits */
 
 typedef struct cu_ellipsoid {
     double center[3]; /* m, world */
@@ -62,6 +63,8 @@ struct cu_scene {
     /* [sun] */
     double sun_elevation, sun_azimuth; /* degrees */
     double latitude, longitude;        /* degrees, north and east positive: with time_utc, where the sun is seen */
+    int has_time_utc;
+    char time_utc[CU_TIME_TEXT];       /* ISO 8601: the sun's position at scene time 0 */
     double turbidity;         /* Preetham atmospheric turbidity */
     int has_sun_irradiance;
     double sun_irradiance[3]; /* klx-like units per channel, on a plane perpendicular to the rays */

@@ -1,6 +1,7 @@
 /* src/core/scene_keys.c: the table of scene keys and sections (see scene_keys.h) and the syntax of one key's value. */
 #include "scene_keys.h"
 #include "error.h"
+#include "solar.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -55,6 +56,10 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     NUM("sun", "elevation", 1, "0", -90, 90, 0, "degrees", "angle of the sun above the horizon", S(sun_elevation)),
     NUM("sun", "azimuth", 1, "0", -360, 720, 0, "degrees", "direction of the sun, from north toward east",
         S(sun_azimuth)),
+    /* time_utc: 1900 .. 2100, the range of the Delta T model (solar.c) */
+    {"sun", "time_utc", CU_KEY_TIME, 1, NULL, NULL, 0, 0, 0, 0, "",
+     "UTC date and time (2026-06-21T12:00:00Z; +hh:mm offsets too): the sun from the solar position at latitude "
+     "and longitude, following [scene] time; replaces elevation and azimuth", S(time_utc), S(has_time_utc)},
     NUM("sun", "latitude", 1, "0", -90, 90, 0, "degrees", "with time_utc: the place, north positive", S(latitude)),
     NUM("sun", "longitude", 1, "0", -180, 180, 0, "degrees", "with time_utc: the place, east positive",
         S(longitude)),
@@ -331,6 +336,19 @@ static int clip40(int n)
 
 int cu_scene_key_parse(const cu_scene_key *k, void *dst, const char *text, const char *at, cu_error *err)
 {
+    if (k->type == CU_KEY_TIME) {
+        cu_utc t;
+        char msg[sizeof err->msg];
+        cu_error e2;
+        if (strlen(text) >= CU_TIME_TEXT)
+            return cu_fail(err, "%s: '%s' is longer than %d characters", at, k->name, CU_TIME_TEXT - 1);
+        if (cu_utc_parse(text, &t, &e2)) {
+            snprintf(msg, sizeof msg, "%s", e2.msg);
+            return cu_fail(err, "%s: %.400s", at, msg);
+        }
+        snprintf((char *)dst, CU_TIME_TEXT, "%s", text);
+        return 0;
+    }
     if (k->values) {
         for (int i = 0; k->values[i]; i++)
             if (strcmp(text, k->values[i]) == 0) {

@@ -10,6 +10,7 @@ typedef enum cu_key_type {
     CU_KEY_INTEGER, /* int, a whole number */
     CU_KEY_ENUM,    /* int: the index of the value's name in values */
     CU_KEY_BOOL,    /* int 0/1, written as values[0] / values[1] (off / on) */
+    CU_KEY_TIME,    /* char[CU_TIME_TEXT]: a UTC date and time in ISO 8601 (src/core/solar.c checks it) */
 } cu_key_type;
 
 typedef struct cu_scene_key {
@@ -39,7 +40,7 @@ typedef struct cu_scene_section {
 } cu_scene_section;
 
 /* Counts are part of the declarations so that other files can size arrays by them; scene_keys.c checks them. */
-#define CU_SCENE_KEY_COUNT 50
+#define CU_SCENE_KEY_COUNT 51
 #define CU_ELLIPSOID_KEY_COUNT 2
 #define CU_CLOUD_KEY_COUNT 6
 #define CU_LAYER_KEY_COUNT 8

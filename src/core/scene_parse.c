@@ -4,6 +4,7 @@
 #include "error.h"
 #include "presets.h"
 #include "scene_keys.h"
+#include "scene_sun.h"
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -132,6 +133,14 @@ static int scene_checks(const cu_scene *s, const char *at, cu_error *err)
     double dx = s->cam_look[0] - s->cam_pos[0], dy = s->cam_look[1] - s->cam_pos[1], dz = s->cam_look[2] - s->cam_pos[2];
     if (dx * dx + dy * dy + dz * dz < 1e-12)
         return cu_fail(err, "%s: [camera] 'look_at' equals 'position'; the view direction is undefined", at);
+    if (s->has_time_utc && (s->explicit_key[cu_scene_key_find("sun", "elevation") - cu_scene_keys] ||
+                            s->explicit_key[cu_scene_key_find("sun", "azimuth") - cu_scene_keys]))
+        return cu_fail(err, "%s: [sun] gives time_utc and elevation or azimuth; the time and place decide the angles",
+                       at);
+    double el, az;
+    cu_error e2;
+    if (cu_scene_sun_at(s, s->time, &el, &az, &e2))
+        return cu_fail(err, "%s: %.400s", at, e2.msg);
     return cu_scene_check_ranges(s, at, err);
 }
 

@@ -42,7 +42,9 @@ static void keys_of(out *o, const void *base, const cu_scene_key *keys, int n, c
         const char *v = (const char *)base + k->offset;
         put(o, "%s =", k->name);
         for (int c = 0; c < (k->values ? 1 : k->count); c++) {
-            if (k->values)
+            if (k->type == CU_KEY_TIME)
+                put(o, " %s", v);
+            else if (k->values)
                 put(o, " %s", k->values[*(const int *)v]);
             else if (k->type == CU_KEY_INTEGER)
                 put(o, " %d", ((const int *)v)[c]);

@@ -42,9 +42,7 @@ typedef struct cu_solar_angles {
 int cu_solar_position(const cu_utc *t, double latitude_deg, double longitude_deg, double height_m, int refraction,
                       cu_solar_angles *out, cu_error *err);
 
-/* The same from the text of a time (cu_utc_parse), in plain numbers: what the `cumulo sun` command calls. */
-int cu_solar_position_at(const char *time_utc, double latitude_deg, double longitude_deg, double height_m,
-                         int refraction, double *elevation_deg, double *azimuth_deg, cu_error *err);
+/* cu_solar_position_at (the same from the text of a time, in plain numbers) is public: include/cumulo.h. */
 
 /* ---- for tests ---- */
 

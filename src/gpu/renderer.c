@@ -6,6 +6,7 @@
 #include "error.h"
 #include "glstate.h"
 #include "scene_camera.h"
+#include "scene_sun.h"
 #include "upload.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -199,6 +200,8 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     if (!r->order || !r->order_key || !r->cams)
         return cu_fail(err, "clouds: out of memory");
     ctx->num_ell = r->clouds.num_ell;
+    if (cu_scene_sun_at(&r->scene, r->time, &r->scene.sun_elevation, &r->scene.sun_azimuth, err))
+        return 1;
     memset(&r->none, 0, sizeof r->none);
     ctx->cloud = &r->none;
     cu_sky_compute(&r->sky, &r->scene);
@@ -253,6 +256,7 @@ int cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg
 {
     if (!isfinite(elevation_deg) || !isfinite(azimuth_deg) || elevation_deg < -90 || elevation_deg > 90)
         return cu_fail(err, "sun: elevation must be in [-90, 90] and both angles finite");
+    r->scene.has_time_utc = 0; /* the angles given win; set_sun_utc follows a clock again */
     r->scene.sun_elevation = elevation_deg;
     r->scene.sun_azimuth = fmod(azimuth_deg, 360.0);
     if (r->scene.sun_azimuth < 0)
@@ -471,8 +475,43 @@ int cu_renderer_set_time(cu_renderer *r, double t, cu_error *err)
 {
     if (!isfinite(t) || fabs(t) > 1e9)
         return cu_fail(err, "time: must be finite and within 1e9 s, got %g", t);
+    double el, az;
+    if (cu_scene_sun_at(&r->scene, t, &el, &az, err))
+        return 1;
     r->time = t;
     cu_cloud_set_at_time(&r->clouds, t);
+    if (r->scene.has_time_utc && (el != r->scene.sun_elevation || az != r->scene.sun_azimuth)) {
+        r->scene.sun_elevation = el;
+        r->scene.sun_azimuth = az;
+        cu_sky_compute(&r->sky, &r->scene);
+        r->sun_dirty = 1;
+    }
+    return 0;
+}
+
+int cu_renderer_set_sun_utc(cu_renderer *r, const char *time_utc, double latitude_deg, double longitude_deg,
+                            cu_error *err)
+{
+    cu_scene s = r->scene; /* checked on a copy: a rejected call changes nothing */
+    if (!time_utc || strlen(time_utc) >= sizeof s.time_utc)
+        return cu_fail(err, "sun: time_utc missing or too long");
+    if (!(latitude_deg >= -90 && latitude_deg <= 90) || !(longitude_deg >= -180 && longitude_deg <= 180))
+        return cu_fail(err, "sun: latitude must be in [-90, 90] and longitude in [-180, 180] degrees");
+    snprintf(s.time_utc, sizeof s.time_utc, "%s", time_utc);
+    s.has_time_utc = 1;
+    s.latitude = latitude_deg;
+    s.longitude = longitude_deg;
+    double el, az;
+    if (cu_scene_sun_at(&s, r->time, &el, &az, err))
+        return 1;
+    snprintf(r->scene.time_utc, sizeof r->scene.time_utc, "%s", time_utc);
+    r->scene.has_time_utc = 1;
+    r->scene.latitude = latitude_deg;
+    r->scene.longitude = longitude_deg;
+    r->scene.sun_elevation = el;
+    r->scene.sun_azimuth = az;
+    cu_sky_compute(&r->sky, &r->scene);
+    r->sun_dirty = 1;
     return 0;
 }
 

@@ -29,7 +29,8 @@ static void check_keys(const cu_scene_key *keys, int n, size_t struct_size, int 
         if (!named && !(k->lo <= k->hi))
             fail_msg("%s.%s: empty range", k->section, k->name);
         assert_true(k->multiple == 0 || k->type == CU_KEY_INTEGER);
-        size_t size = (size_t)k->count * (k->type == CU_KEY_NUMBER ? sizeof(double) : sizeof(int));
+        size_t size = k->type == CU_KEY_TIME ? CU_TIME_TEXT
+                      : (size_t)k->count * (k->type == CU_KEY_NUMBER ? sizeof(double) : sizeof(int));
         assert_true(k->offset + size <= struct_size);
         assert_true(k->unit != NULL && k->doc != NULL && k->doc[0]);
         assert_true(k->given == 0 || (!repeated && k->given + sizeof(int) <= sizeof(cu_scene)));

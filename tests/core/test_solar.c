@@ -505,36 +505,6 @@ static void test_from_unix(void **st)
     assert_int_equal(cu_utc_from_unix(0, NULL), 1);
 }
 
-/* app/cmd_sun.c declares cu_solar_position_at itself (the program sees only include/cumulo.h): the same text. */
-static char *squeeze(const char *path, const char *from, const char *to)
-{
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    char *b = calloc(1, 65537), *o = calloc(1, 65537);
-    size_t n = fread(b, 1, 65536, f), k = 0;
-    fclose(f);
-    char *p = strstr(b, from), *q = p ? strstr(p, to) : NULL;
-    assert_non_null(q);
-    for (; p < q + strlen(to); p++)
-        if (!(*p == ' ' || *p == '\n') || (k && o[k - 1] != ' '))
-            o[k++] = *p == '\n' ? ' ' : *p;
-    (void)n;
-    free(b);
-    return o;
-}
-
-static void test_cli_declaration(void **st)
-{
-    (void)st;
-    char *a = squeeze("src/core/solar.h", "int cu_solar_position_at(", ");");
-    char *b = squeeze("app/cmd_sun.c", "int cu_solar_position_at(", ");");
-    if (strcmp(a, b))
-        print_error("solar.h: %s\ncmd_sun.c: %s\n", a, b);
-    assert_string_equal(a, b);
-    free(a);
-    free(b);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -550,7 +520,6 @@ int main(void)
         cmocka_unit_test(test_parse_rejects),
         cmocka_unit_test(test_add_seconds),
         cmocka_unit_test(test_from_unix),
-        cmocka_unit_test(test_cli_declaration),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,6 +10,10 @@ static void check_keys(const void *base, const cu_scene_key *keys, int n, const 
     for (int i = 0; i < n; i++) {
         const cu_scene_key *k = &keys[i];
         const char *p = (const char *)base + k->offset;
+        if (k->type == CU_KEY_TIME) {
+            FUZZ_CHECK(memchr(p, 0, CU_TIME_TEXT) != NULL, "%s %s.%s not terminated", where, k->section, k->name);
+            continue;
+        }
         if (k->values) {
             int v = *(const int *)p, nv = 0;
             while (k->values[nv])
@@ -61,7 +65,8 @@ static void check_same(const void *a, const void *b, const cu_scene_key *keys, i
 {
     for (int i = 0; i < n; i++) {
         const cu_scene_key *k = &keys[i];
-        size_t sz = k->values ? sizeof(int) : (k->type == CU_KEY_INTEGER ? sizeof(int) : sizeof(double)) * k->count;
+        size_t sz = k->type == CU_KEY_TIME ? CU_TIME_TEXT
+                    : k->values ? sizeof(int) : (k->type == CU_KEY_INTEGER ? sizeof(int) : sizeof(double)) * k->count;
         FUZZ_CHECK(!memcmp((const char *)a + k->offset, (const char *)b + k->offset, sz), "%s.%s reads back changed",
                    k->section, k->name);
     }
