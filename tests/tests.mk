@@ -27,6 +27,7 @@ $(eval $(call test_program,test_math,tests/core/test_math.c $(CORE),,$(LIB_LIBS)
 $(eval $(call test_program,test_keys,tests/core/test_keys.c $(CORE),,$(LIB_LIBS)))
 CHECK_TESTS += tests/core/test_keys.sh
 $(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB_LIBS)))
+$(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
