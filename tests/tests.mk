@@ -29,6 +29,8 @@ CHECK_TESTS += tests/core/test_keys.sh
 $(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB_LIBS)))
 # The sun from date, time and place (SPA) against published values, and the UTC parser on hostile text.
 $(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIBS)))
+# Generated cumulus layers: coverage, the size distribution's exponent, no overlap, determinism.
+$(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
