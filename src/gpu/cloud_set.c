@@ -65,6 +65,14 @@ int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *nois
     return 0;
 }
 
+void cu_cloud_slot_free_maps(cu_cloud_slot *sl, const cu_gl *gl)
+{
+    cu_target_delete(&sl->sun_map, gl);
+    cu_target_delete(&sl->slab_map[0], gl);
+    cu_target_delete(&sl->slab_map[1], gl);
+    sl->maps_valid = sl->zenith_valid = 0;
+}
+
 void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl)
 {
     for (int i = 0; gl && i < cs->n; i++) {
@@ -73,9 +81,7 @@ void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl)
             gl->DeleteVertexArrays(1, &sl->vao);
         if (sl->inst_vbo)
             gl->DeleteBuffers(1, &sl->inst_vbo);
-        cu_target_delete(&sl->sun_map, gl);
-        cu_target_delete(&sl->slab_map[0], gl);
-        cu_target_delete(&sl->slab_map[1], gl);
+        cu_cloud_slot_free_maps(sl, gl);
     }
     free(cs->slot);
     memset(cs, 0, sizeof *cs);

@@ -21,6 +21,8 @@ typedef struct cu_cloud_slot {
     cu_sun_maps sun;
     cu_slab_maps slab;
     int has_maps;              /* the GL objects above exist */
+    int map_size;              /* their texels a side (a level of detail: what the cloud covers on screen) */
+    int want_size;             /* what this frame's view asks for */
     int maps_valid;            /* made for maps_sun and this look */
     int zenith_valid;
     vec3 maps_sun;
@@ -35,6 +37,8 @@ typedef struct cu_cloud_set {
 /* The scene's clouds, CPU side (GL objects are made when a cloud is first drawn). */
 int  cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *noise, cu_error *err);
 void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl);
+/* Deletes a cloud's sun and slab maps (they are made again at the next size asked for). */
+void cu_cloud_slot_free_maps(cu_cloud_slot *sl, const cu_gl *gl);
 /* Positions and densities at scene time t (s). */
 void cu_cloud_set_at_time(cu_cloud_set *cs, double t);
 /* A cloud's density factor in its life: forms over the first fifth, mature, dissolves over the last fifth, smooth

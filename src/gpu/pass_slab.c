@@ -109,15 +109,15 @@ int cu_pass_slab_create(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *de
     return 0;
 }
 
-int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, cu_target map[2], cu_slab_maps *out,
-                             cu_error *err)
+int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, int size, cu_target map[2],
+                             cu_slab_maps *out, cu_error *err)
 {
     *out = p->out;
     if (!p->prog)
         return 0;
     for (int i = 0; i < p->maps; i++) {
         cu_target_desc d = {.name = i ? "slab map from the zenith" : "slab map from the sun",
-                            .width = ctx->sun_size, .height = ctx->sun_size, .format = GL_RGBA16F, .colors = 2,
+                            .width = size, .height = size, .format = GL_RGBA16F, .colors = 2,
                             .mipmaps = 1};
         if (cu_target_create(&map[i], ctx->gl, &d, err))
             return 1;

@@ -25,8 +25,8 @@ int cu_pass_slab_defines(const cu_pass_slab *p, const cu_gpu_scene *ctx, char *b
 int cu_pass_slab_create(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
 /* A cloud's slab maps (the cloud owns them: cu_target_delete), and what the cloud pass reads: out. Nothing when the
  * mode is not the slab model's. */
-int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, cu_target map[2], cu_slab_maps *out,
-                             cu_error *err);
+int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, int size, cu_target map[2],
+                             cu_slab_maps *out, cu_error *err);
 /* GL objects only: the tables stay loaded for the next scene. */
 void cu_pass_slab_destroy(cu_pass_slab *p, const cu_gl *gl);
 /* The tables (with the renderer). */

@@ -51,9 +51,13 @@ int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull
     return 0;
 }
 
-int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, cu_target *map, cu_sun_maps *out, cu_error *err)
+int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, int size, cu_target *map, cu_sun_maps *out,
+                           cu_error *err)
 {
-    if (cu_target_create(map, gl, &p->map_desc, err))
+    cu_target_desc d = p->map_desc;
+    d.width = size * p->tiles;
+    d.height = size;
+    if (cu_target_create(map, gl, &d, err))
         return 1;
     out->map = map->tex[0];
     out->tau = map->tex[1];

@@ -20,8 +20,10 @@ typedef struct cu_pass_sun {
 int cu_pass_sun_create(cu_pass_sun *p, const cu_gpu_scene *ctx, const char *hull_defs, const char *fs_defs,
                        cu_error *err);
 void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl);
-/* A cloud's map (the cloud owns it: cu_target_delete) and what the cloud pass reads of it. */
-int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, cu_target *map, cu_sun_maps *out, cu_error *err);
+/* A cloud's map of size x size texels a tile (the cloud owns it: cu_target_delete) and what the cloud pass reads of
+ * it. */
+int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, int size, cu_target *map, cu_sun_maps *out,
+                           cu_error *err);
 /* Renders ctx->cloud's map for ctx's sun direction and updates out. */
 void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, cu_sun_maps *out);
 #endif

@@ -286,21 +286,41 @@ static void bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
     ctx->sun = sl->sun;
     ctx->slab = sl->slab;
     ctx->ke_scale = sl->factor;
+    ctx->sun_size = sl->map_size > 0 ? sl->map_size : r->scene.sun_map_size;
     cu_gpu_scene_set_sun(ctx);
 }
 
 /* A cloud's GL objects, made the first time it is drawn: a field of thousands of clouds pays for the ones seen. */
 static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
 {
-    if (sl->has_maps)
-        return 0;
     cu_gpu_scene *ctx = &r->ctx;
-    cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
-    if (cu_pass_sun_map_create(&r->pass_sun, &r->gl, &sl->sun_map, &sl->sun, err) ||
-        cu_pass_slab_maps_create(&r->pass_slab, ctx, sl->slab_map, &sl->slab, err))
+    if (!sl->vao)
+        cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
+    if (sl->has_maps && sl->want_size <= sl->map_size)
+        return 0; /* maps only grow: a cloud that recedes keeps its sharper maps (no churn at a size boundary) */
+    if (sl->has_maps)
+        cu_cloud_slot_free_maps(sl, &r->gl);
+    sl->map_size = sl->want_size;
+    if (cu_pass_sun_map_create(&r->pass_sun, &r->gl, sl->map_size, &sl->sun_map, &sl->sun, err) ||
+        cu_pass_slab_maps_create(&r->pass_slab, ctx, sl->map_size, sl->slab_map, &sl->slab, err))
         return 1;
     sl->has_maps = 1;
     return 0;
+}
+
+/* The level of detail of a cloud's maps in a field: about a texel per two pixels the cloud covers on screen, a power
+ * of two from 16 up to quality.sun_map_size. A lone cloud always gets quality.sun_map_size. */
+static int map_size_for(const cu_renderer *r, const cu_camera *c, mat4 proj, double radius, int height)
+{
+    int most = r->scene.sun_map_size, size = 16;
+    if (r->clouds.n == 1 || most <= 16)
+        return most;
+    double py = fabs(proj.m[5]);
+    double d = c->ortho ? 1.0 : fmax(v3_len(c->pos), radius);
+    double pixels = radius * py * height / d; /* the cloud's diameter on screen */
+    while (size < most && size < 0.5 * pixels)
+        size *= 2;
+    return size < most ? size : most;
 }
 
 /* Cloud sl's maps seen from the sun (and the zenith), remade when the sun moved or the cloud took a new look; made
@@ -371,6 +391,7 @@ static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
             return -1;
         if (!c->visible)
             continue;
+        sl->want_size = map_size_for(r, c, proj, sl->cloud.bound_radius, r->ctx.height);
         /* perspective: the eye's distance from the cloud's centre (pos is cloud-local); orthographic: how far along
          * the view direction the centre lies */
         r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir) : v3_dot(c->pos, c->pos);
