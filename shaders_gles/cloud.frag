@@ -6,13 +6,17 @@
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
 // inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
-// model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour).
+// model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
+// clouds shade this one: their optical depth along the sun, pass_shadow.c).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
 // but they are a few multiplies per sample; the cost is not worth a second precision domain.
 #ifndef ENERGY_PASS
 #define ENERGY_PASS 0
+#endif
+#ifndef EXT_SHADOW
+#define EXT_SHADOW 0
 #endif
 #include "density.glsl"
 #include "sunmap.glsl"
@@ -127,9 +131,34 @@ vec3 segment_source(float dt, vec3 S0, vec3 S1)
 
 // Light scattered toward the eye per unit extinction at p, relative to the sun's irradiance: single scattering of
 // the attenuated sunbeam (eq. 3.21 without k_e and without the view transmittance) plus the multiple-scattering term.
+#if EXT_SHADOW
+uniform sampler2D u_sun_ext;   // other clouds' optical depth toward the sun, over this cloud's sun-map square
+uniform float u_shadow_g;      // asymmetry for the diffuse light that gets through them (two-stream)
+float ext_tau(vec3 p)
+{
+    vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
+    return texture(u_sun_ext, uv).r;
+}
+// Sunlight through other clouds, direct and diffuse: a conservative two-stream slab transmits 1 / (1 + 3/4 (1 - g)
+// tau) (Bohren 1987, Am. J. Phys. 55, 524): what drives this cloud's multiple scattering in their shadow.
+float ext_diffuse(vec3 p)
+{
+    return 1.0 / (1.0 + 0.75 * (1.0 - u_shadow_g) * ext_tau(p));
+}
+#else
+float ext_tau(vec3 p)
+{
+    return 0.0;
+}
+float ext_diffuse(vec3 p)
+{
+    return 1.0;
+}
+#endif
+
 vec3 source(vec3 p, float ke, vec3 ph0)
 {
-    float ts = sun_optical_depth(p, ke) * DM_SCALE;
+    float ts = (sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE;
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
     float ao = 1.0;
@@ -248,6 +277,7 @@ void main()
     vec3 p_first = ro;    // where the ray enters the cloud
 #endif
     int k = 0, intervals = 0;
+    float ext_first = 0.0; // other clouds' optical depth toward the sun where the ray enters this one
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
         float a, b;
@@ -271,6 +301,8 @@ void main()
         float t = a;
         vec3 p = ro + dir * (t + nudge);
         vec3 p_entry = p;     // Kol's "multiple scattering point": the interval's entry, a hair inside
+        if (intervals == 1)
+            ext_first = ext_tau(p_entry);
 #if ENERGY_PASS
         if (intervals == 1)
             p_first = p_entry;
@@ -310,7 +342,7 @@ void main()
         // blends with the interval's opacity alone, which takes the slab's thickness into account twice.
         float slab_alpha;
         bool lit_side;
-        float ms = ms_slab(p_entry, dir, mu, slab_alpha, lit_side);
+        float ms = ms_slab(p_entry, dir, mu, slab_alpha, lit_side) * ext_diffuse(p_entry);
         ms *= exp(-taup0) * min((1.0 - exp(-(taup - taup0))) / max(slab_alpha, 1e-4), 1.0);
         Lms += lit_side ? vec2(ms, 0.0) : vec2(0.0, ms);
 #endif
@@ -332,7 +364,7 @@ void main()
     // P_p (e^(-f tau) - e^(-tau)) tends to (1 - f) P_p tau instead, so we do not use it.
     vec3 pp = phase_table(mu, 1);
     if (pp.g > 0.0)
-        L += pp / max(u_peak_f, vec3(1e-6)) * (exp(-(1.0 - u_peak_f) * tau) - vec3(exp(-tau)));
+        L += pp / max(u_peak_f, vec3(1e-6)) * (exp(-(1.0 - u_peak_f) * tau) - vec3(exp(-tau))) * exp(-ext_first);
 #endif
     float alpha = 1.0 - exp(-tau);
 #if ENERGY_PASS

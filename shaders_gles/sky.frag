@@ -8,6 +8,30 @@ uniform vec3 u_sun_dir;
 uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
 uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
 uniform vec3 u_ground;         // ground radiance
+#if GROUND_SHADOW
+uniform vec3 u_ground_sun;     // the part of it the sun lights directly
+uniform sampler2D u_ground_tau;// the clouds' optical depth toward the sun above each ground point (pass_shadow.c)
+uniform vec3 u_eye;            // the camera, world metres
+uniform vec3 u_gmap;           // the map's centre (x, z) and side (m)
+uniform float u_shadow_g;
+// The clouds' shadow on the ground: sunlight through optical depth tau, direct and diffuse, as a conservative
+// two-stream slab transmits it: 1 / (1 + 3/4 (1 - g) tau) (Bohren 1987). The sky light is not shadowed.
+vec3 ground(vec3 dir)
+{
+    float t = -u_eye.y / min(dir.y, -1e-6);
+    vec2 g = u_eye.xz + dir.xz * t;
+    vec2 uv = (g - u_gmap.xy) / u_gmap.z + 0.5;
+    if (u_eye.y <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+        return u_ground;
+    float tau = texture(u_ground_tau, uv).r;
+    return u_ground - u_ground_sun * (1.0 - 1.0 / (1.0 + 0.75 * (1.0 - u_shadow_g) * tau));
+}
+#else
+vec3 ground(vec3 dir)
+{
+    return u_ground;
+}
+#endif
 uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
 #if SKY_CONSTANT
 uniform vec3 u_sky_color;
@@ -45,7 +69,7 @@ void main()
     {
 #else
     if (dir.y < 0.0) {
-        L = u_ground;
+        L = ground(dir);
     } else {
         float cos_gamma = clamp(dot(dir, u_sun_dir), -1.0, 1.0);
         float gamma = acos(cos_gamma);

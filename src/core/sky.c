@@ -112,6 +112,7 @@ void cu_sky_compute(cu_sky *sky, const cu_scene *s)
     for (int c = 0; c < 3; c++) {
         sky->sky_irradiance[c] = E[c];
         sky->ground[c] = s->ground_albedo / CU_PI * (sky->sun_irradiance[c] * mu_s + E[c]);
+        sky->ground_sun[c] = s->ground_albedo / CU_PI * sky->sun_irradiance[c] * mu_s;
         /* half the sphere is sky (M / 2 pi is its mean radiance), half is ground; a constant sky is everywhere */
         sky->sky_mean[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : M[c] / (2 * CU_PI);
         sky->ground_mean[c] = s->sky_model == CU_SKY_CONSTANT ? s->sky_color[c] : sky->ground[c];

@@ -12,6 +12,7 @@ typedef struct cu_sky {
     double zenith[3];           /* Y (kcd/m^2), x, y */
     double norm[3];             /* F(0, theta_s) for Y, x, y */
     double ground[3];           /* radiance of the Lambertian ground */
+    double ground_sun[3];       /* the part of it lit by the sun directly (what a cloud's shadow takes away) */
     double sky_irradiance[3];   /* sky irradiance on a horizontal plane */
     double sky_mean[3];         /* mean radiance of the upper hemisphere of the environment */
     double ground_mean[3];      /* mean radiance of the lower hemisphere (the ground; the sky colour if constant) */

@@ -26,6 +26,9 @@ typedef struct cu_cloud_slot {
     int maps_valid;            /* made for maps_sun and this look */
     int zenith_valid;
     vec3 maps_sun;
+    cu_target shadow;          /* other clouds' optical depth over its sun-map square (pass_shadow.c) */
+    int has_shadow;            /* this frame: some other cloud shades it, and shadow holds their optical depth */
+    uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
 } cu_cloud_slot;
 
 typedef struct cu_cloud_set {

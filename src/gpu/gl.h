@@ -27,7 +27,7 @@
     X(GetProgramiv, GETPROGRAMIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \
     X(GetShaderiv, GETSHADERIV) X(GetString, GETSTRING) X(GetStringi, GETSTRINGI) \
     X(GetUniformLocation, GETUNIFORMLOCATION) X(IsEnabled, ISENABLED) X(LinkProgram, LINKPROGRAM) X(PixelStorei, PIXELSTOREI) \
-    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(SamplerParameteri, SAMPLERPARAMETERI) \
+    X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(SamplerParameteri, SAMPLERPARAMETERI) X(Scissor, SCISSOR) \
     X(ShaderSource, SHADERSOURCE) X(StencilFunc, STENCILFUNC) X(StencilFuncSeparate, STENCILFUNCSEPARATE) \
     X(StencilMaskSeparate, STENCILMASKSEPARATE) X(StencilOp, STENCILOP) X(StencilOpSeparate, STENCILOPSEPARATE) \
     X(TexImage2D, TEXIMAGE2D) X(TexImage3D, TEXIMAGE3D) X(TexParameteri, TEXPARAMETERI) \

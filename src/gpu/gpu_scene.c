@@ -84,6 +84,13 @@ void cu_density_uniforms(const cu_gpu_scene *ctx, const cu_density_locs *l)
     gl->Uniform1fv(l->noise_mean, 5, means);
 }
 
+double cu_shadow_g(const cu_gpu_scene *ctx)
+{
+    /* No g in the Mie table's header: the [cloud] g key's default is the table's value (phase.c) for 6 um. */
+    double g = ctx->scene->phase_g;
+    return g > 0.99 ? 0.99 : g < 0 ? 0 : g;
+}
+
 void cu_sun_locs_get(const cu_gl *gl, GLuint p, cu_sun_locs *l)
 {
 #define LOC(f) l->f = cu_gpu_loc(gl, p, "u_sun_" #f)

@@ -15,7 +15,8 @@ struct cu_collector;
 
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
-       CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */ };
+       CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the
+       ground's in the sky pass */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
@@ -85,6 +86,9 @@ typedef struct cu_gpu_scene {
     cu_host_depth host_depth;/* this frame's */
     int width, height;       /* this frame's size */
     cu_sun_maps sun;         /* published by the sun pass */
+    GLuint sun_ext;          /* the cloud's shadow from other clouds (pass_shadow.c; a 1x1 zero when none) */
+    GLuint ground_tau;       /* the ground's shadow map, 0 when none; its centre (x, z) and side (m) */
+    vec3 ground_map;
     cu_slab_maps slab;       /* published by the slab pass */
     double ms_gain[2];       /* published by the energy closure: gains on reflected, transmitted multiple scattering */
     GLenum hdr_format;       /* published by the tone map: the HDR target's format */
@@ -120,6 +124,9 @@ void cu_sun_locs_get(const cu_gl *gl, GLuint p, cu_sun_locs *l);
 /* The one place the sun's direction and axes reach the shaders. */
 void cu_sun_uniforms(const cu_gpu_scene *ctx, const cu_sun_locs *l);
 
+/* The asymmetry parameter the shadows' two-stream transmission takes: the scene's g for an analytic phase, the Mie
+ * table's value (0.86 for r_e = 6 um) for Mie. */
+double cu_shadow_g(const cu_gpu_scene *ctx);
 /* What the sky and cloud passes multiply their radiance by (see gpu_scene.c). */
 void cu_out_scale(const cu_gpu_scene *ctx, float s[3]);
 /* The largest value the sky and cloud passes store (see gpu_scene.c). */

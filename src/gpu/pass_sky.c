@@ -11,8 +11,9 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
     cu_sun_locs_get(gl, p->prog, &p->sun);
 #define LOC(f) p->f = cu_gpu_loc(gl, p->prog, "u_" #f)
     LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
-    LOC(zenith); LOC(norm);
+    LOC(zenith); LOC(norm); LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
 #undef LOC
+    cu_gpu_unit(gl, p->prog, "u_ground_tau", CU_UNIT_SHADOW);
     return 0;
 }
 
@@ -36,6 +37,13 @@ void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx)
                   (float)sky->sun_irradiance[2]);
     gl->Uniform1f(p->out_max, cu_out_max(ctx)); /* the disk capped below what the target holds */
     gl->Uniform3f(p->ground, (float)sky->ground[0], (float)sky->ground[1], (float)sky->ground[2]);
+    gl->Uniform3f(p->ground_sun, (float)sky->ground_sun[0], (float)sky->ground_sun[1], (float)sky->ground_sun[2]);
+    gl->Uniform3f(p->eye, (float)ctx->camera.pos.x, (float)ctx->camera.pos.y, (float)ctx->camera.pos.z);
+    gl->Uniform3f(p->gmap, (float)ctx->ground_map.x, (float)ctx->ground_map.y, (float)ctx->ground_map.z);
+    gl->Uniform1f(p->shadow_g, (float)cu_shadow_g(ctx));
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
+    gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau);
+    gl->ActiveTexture(GL_TEXTURE0);
     float os[3];
     cu_out_scale(ctx, os);
     gl->Uniform3f(p->out_scale, os[0], os[1], os[2]);

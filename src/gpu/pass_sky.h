@@ -8,6 +8,7 @@ typedef struct cu_pass_sky {
     GLuint prog;
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color, perez, zenith, norm;
+    GLint ground_sun, eye, gmap, shadow_g;
 } cu_pass_sky;
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);

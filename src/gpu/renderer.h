@@ -6,6 +6,7 @@
 #include "gpu_scene.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
+#include "pass_shadow.h"
 #include "pass_sky.h"
 #include "pass_slab.h"
 #include "pass_sun.h"
@@ -37,6 +38,10 @@ struct cu_renderer {
     cu_pass_sky pass_sky;
     cu_pass_cloud pass_cloud;
     cu_pass_tonemap pass_tonemap;
+    cu_pass_shadow pass_shadow;
+    int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
+    cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
+    uint64_t ground_sig;
 
     int sun_dirty;        /* the sun moved or the scene changed: the energy closure is measured again */
 };

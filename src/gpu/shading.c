@@ -14,7 +14,9 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
     LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear);
+    LOC(shadow_g);
 #undef LOC
+    cu_gpu_unit(gl, p, "u_sun_ext", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, p, "u_host_depth", CU_UNIT_HOST_DEPTH);
     cu_gpu_unit(gl, p, "u_phase", CU_UNIT_PHASE);
     cu_gpu_unit(gl, p, "u_slab_tab", CU_UNIT_SLAB + 0);
@@ -106,6 +108,7 @@ void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_loc
     gl->Uniform1f(l->ms_g, (float)s->phase_g);
     gl->Uniform3f(l->peak_f, (float)ctx->peak_f[0], (float)ctx->peak_f[1], (float)ctx->peak_f[2]);
     gl->Uniform2f(l->ms_gain, (float)ctx->ms_gain[0], (float)ctx->ms_gain[1]);
+    gl->Uniform1f(l->shadow_g, (float)cu_shadow_g(ctx));
     float os[3];
     cu_out_scale(ctx, os);
     gl->Uniform3f(l->out_scale, os[0], os[1], os[2]);
@@ -123,6 +126,8 @@ void cu_shading_bind(const cu_gpu_scene *ctx)
     gl->BindTexture(GL_TEXTURE_2D, ctx->sun.map);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SUN_TAU);
     gl->BindTexture(GL_TEXTURE_2D, ctx->sun.tau);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
+    gl->BindTexture(GL_TEXTURE_2D, ctx->sun_ext);
     const cu_slab_maps *s = &ctx->slab;
     if (s->tab) {
         GLuint t[6] = {s->tab, s->a[0], s->n[0], s->a[1], s->n[1], s->coll};
