@@ -41,7 +41,7 @@ CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # The extremes matrix of every key's range, through the GPU renderer and the path tracer.
 $(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context).
-$(foreach t,embed embed_state,\
+$(foreach t,embed embed_state shadows,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
     $(HEADLESS_LIBS) $(GLES_LIBS))))
 CHECK_TESTS += tests/gpu/test_host_scene.sh
