@@ -4,5 +4,6 @@
 int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_run(int argc, char **argv);
+int cmd_expand(int argc, char **argv);
 int cmd_sun(int argc, char **argv);
 #endif

@@ -12,6 +12,7 @@ static void usage(FILE *f)
             "  bench  SCENE [--frames N] ...     frame times, glmark2-style lines, optional CSV\n"
             "  run    SCENE --platform P ...     the interactive / kiosk loop: a display, inputs that move the sun\n"
             "  sun    --time-utc T ...           the sun's elevation and azimuth at a UTC time and a place\n"
+            "  expand SCENE [-o OUT.scene]       the scene with its [layer]s written out as [cloud] sections\n"
             "  --version                         version, display back ends and inputs of this build\n"
             "Exit status: 0 success, 1 runtime failure (bad scene file, GL or I/O error), 2 usage error.\n");
 }
@@ -37,6 +38,8 @@ int main(int argc, char **argv)
         return cmd_bench(argc - 1, argv + 1);
     if (strcmp(cmd, "run") == 0)
         return cmd_run(argc - 1, argv + 1);
+    if (strcmp(cmd, "expand") == 0)
+        return cmd_expand(argc - 1, argv + 1);
     if (strcmp(cmd, "sun") == 0)
         return cmd_sun(argc - 1, argv + 1);
     fprintf(stderr, "cumulo: unknown command '%s' (cumulo --help lists them)\n", cmd);

@@ -60,6 +60,13 @@ void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], d
 int  cu_scene_camera_matrices(const cu_scene *s, double aspect, double znear, double zfar, float view[16],
                               float projection[16], cu_error *err);
 void cu_scene_free(cu_scene *s);
+/* Replaces the scene's [layer]s by the clouds they generate, as written [cloud] sections (each with the layer's wind,
+ * lifetime and wrap, and a life phase and noise offset of its own), so it renders exactly as before and a user can
+ * edit them. Fails, the scene unchanged, beyond 1024 clouds or 4096 ellipsoids in all. */
+int  cu_scene_expand(cu_scene *s, cu_error *err);
+/* The scene as scene-file text that reads back to the same values, into buf (cap bytes, NUL-terminated): its
+ * length, or 0 when it does not fit. */
+size_t cu_scene_format(const cu_scene *s, char *buf, size_t cap);
 
 /* ---- renderer ---- */
 int  cu_renderer_create(cu_renderer **out, const cu_desc *desc, cu_error *err);

@@ -47,7 +47,7 @@ $(foreach t,embed embed_state shadows,\
 CHECK_TESTS += tests/gpu/test_host_scene.sh
 
 # app: the cumulo program's command line.
-CHECK_TESTS += tests/app/test_cli.sh
+CHECK_TESTS += tests/app/test_cli.sh tests/app/test_sky_cli.sh
 CHECK_TESTS += tests/app/test_sun_cli.sh
 
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.

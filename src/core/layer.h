@@ -4,6 +4,7 @@
 #ifndef CU_LAYER_H
 #define CU_LAYER_H
 #include "cumulo.h"
+#include "cumulus_type.h"
 #include <stdint.h>
 
 /* The ranges cu_layer_generate accepts, one place for the parser, the docs and the tests (m unless stated). */
@@ -14,29 +15,7 @@
 #define CU_LAYER_EXTENT_MIN 100.0
 #define CU_LAYER_EXTENT_MAX 500000.0
 #define CU_LAYER_MAX_CLOUDS 20000    /* a layer needing more clouds than this is an error, not an allocation */
-#define CU_LAYER_MAX_PER_CLOUD 16    /* ellipsoids per cloud, at most */
-#define CU_LAYER_MIN_RADIUS 20.0     /* m, every ellipsoid radius is at least this */
-/* Exponent b of the footprint diameter density N(D) ~ D^-b every type draws from (the sources are in layer.c). */
-#define CU_LAYER_SIZE_EXPONENT 1.7
 
-typedef enum cu_cumulus_type { CU_CUMULUS_HUMILIS, CU_CUMULUS_MEDIOCRIS, CU_CUMULUS_CONGESTUS } cu_cumulus_type;
-#define CU_CUMULUS_TYPES 3
-
-/* What a type's clouds look like; the generator reads only this table (layer.c, with the reasons for each range). */
-typedef struct cu_cumulus_info {
-    const char *name;              /* "cumulus-humilis", ... as the scene file spells it */
-    double d_min, d_max;           /* m, range of footprint diameters D the power law is truncated to */
-    double aspect_min, aspect_max; /* height / D, drawn uniformly per cloud, then clipped to the layer thickness */
-    int ell_min, ell_max;          /* ellipsoids per cloud, drawn uniformly */
-} cu_cumulus_info;
-
-/* The table row of t, or NULL for a value outside the enum. */
-const cu_cumulus_info *cu_cumulus_type_info(cu_cumulus_type t);
-/* "cumulus-humilis" | "cumulus-mediocris" | "cumulus-congestus" (exact, case-sensitive): 0 and *out set; non-zero
- * for anything else (NULL included), *out untouched. */
-int cu_cumulus_type_parse(const char *name, cu_cumulus_type *out);
-/* The name parse accepts, or "unknown" for a value outside the enum. */
-const char *cu_cumulus_type_name(cu_cumulus_type t);
 
 /* World axes: x east, y up, z south. Every field is checked by cu_layer_generate; zero is not a default. */
 typedef struct cu_layer_spec {

@@ -22,13 +22,14 @@ typedef struct cu_ellipsoid {
 typedef struct cu_cloud_spec {
     int first, count;         /* its ellipsoids in cu_scene.ell */
     int line;                 /* of its [cloud] header (0: none) */
-    int has_density, has_boundary, has_wind, has_noise_offset, has_lifetime, has_life_phase;
+    int has_density, has_boundary, has_wind, has_noise_offset, has_lifetime, has_life_phase, has_wrap;
     double density_cm3;       /* droplets per cm^3 in the core */
     double boundary_m;        /* h */
     double wind[2];           /* m/s toward east and north */
     double noise_offset[3];   /* m: where in the noise field the cloud sits (its own look) */
     double lifetime;          /* s: forms, matures and dissolves over this, then forms again (0: forever) */
     double life_phase;        /* 0..1: where in its life the cloud is at time 0 */
+    double wrap;              /* m: side of the square about the origin it wraps around, fading at its border (0: no) */
 } cu_cloud_spec;
 
 /* One [layer]: a field of generated cumulus (src/core/layer.c). */
@@ -80,7 +81,8 @@ struct cu_scene {
     cu_phase_model phase;
     double phase_g;
     cu_profile profile;
-    double cloud_wind[2], cloud_noise_offset[3], cloud_lifetime, cloud_life_phase; /* every cloud's defaults */
+    double cloud_wind[2], cloud_noise_offset[3], cloud_lifetime, cloud_life_phase, cloud_wrap; /* every cloud's
+                                                                                                 defaults */
     /* [cloud] ... [ellipsoid] ... (clouds[0]'s density and boundary are the fields above) */
     int n_clouds;
     cu_cloud_spec clouds[CU_MAX_CLOUDS];

@@ -100,6 +100,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "(0: lives forever)", S(cloud_lifetime)),
     NUM("cloud", "life_phase", 1, "0.5", 0, 1, 0, "", "where in its life the cloud is at time 0 (0.5: mature)",
         S(cloud_life_phase)),
+    /* wrap: a [layer]'s extent range */
+    NUM("cloud", "wrap", 1, "0", 0, 500000, 0, "m", "side of the square about the origin the cloud wraps around as it "
+        "drifts, fading at its border, as a [layer]'s clouds do (0: no wrap)", S(cloud_wrap)),
     /* [quality], [light] and [ms] counts: loop counts and array sizes the shaders are compiled with; no count enters
      * a formula as a magnitude. segment_ratio <= 10: knot_t in density.glsl is written as r^(j - n) so that r^n
      * never overflows (10^192 would over 3 merged chords of 64 segments). */
@@ -169,6 +172,8 @@ const cu_scene_key cu_cloud_keys[CU_CLOUD_KEY_COUNT] = {
      C(has_lifetime)},
     {"cloud", "life_phase", CU_KEY_NUMBER, 1, NULL, NULL, 0, 1, 0, 0, "", "where in its life it is at time 0",
      C(life_phase), C(has_life_phase)},
+    {"cloud", "wrap", CU_KEY_NUMBER, 1, NULL, NULL, 0, 500000, 0, 0, "m", "the square it wraps around (0: none)",
+     C(wrap), C(has_wrap)},
 };
 
 /* [layer]: a generated field of cumulus (src/core/layer.c holds the size distribution and the shapes). */

@@ -20,7 +20,6 @@ static double seed_unit(uint64_t seed, int k)
 void cu_generated_free(cu_generated *g)
 {
     free(g->spec);
-    free(g->wrap);
     free(g->ell);
     memset(g, 0, sizeof *g);
 }
@@ -43,13 +42,10 @@ static int append_layer(cu_generated *g, const cu_scene *s, const cu_scene_layer
     cu_cloud_spec *ns = realloc(g->spec, sizeof *ns * (size_t)(nc > 0 ? nc : 1));
     if (ns)
         g->spec = ns;
-    double *nw = realloc(g->wrap, sizeof *nw * (size_t)(nc > 0 ? nc : 1));
-    if (nw)
-        g->wrap = nw;
     cu_ellipsoid *ne_ = realloc(g->ell, sizeof *ne_ * (size_t)(ne > 0 ? ne : 1));
     if (ne_)
         g->ell = ne_;
-    if (!ns || !nw || !ne_) {
+    if (!ns || !ne_) {
         cu_layer_free(&l);
         return cu_fail(err, "%s: [layer]: out of memory for %d clouds", at, nc);
     }
@@ -64,6 +60,8 @@ static int append_layer(cu_generated *g, const cu_scene *s, const cu_scene_layer
         o->first = g->n_ell + c->first;
         o->count = c->count < CU_MAX_ELLIPSOIDS ? c->count : CU_MAX_ELLIPSOIDS;
         o->has_density = o->has_boundary = o->has_wind = o->has_noise_offset = o->has_lifetime = o->has_life_phase = 1;
+        o->has_wrap = 1;
+        o->wrap = sl->extent;
         o->density_cm3 = s->density_cm3;
         o->boundary_m = s->boundary_m;
         o->wind[0] = sl->wind[0];
@@ -72,7 +70,6 @@ static int append_layer(cu_generated *g, const cu_scene *s, const cu_scene_layer
             o->noise_offset[a] = floor(seed_unit(c->seed, 1 + a) * 1000.0);
         o->lifetime = sl->lifetime;
         o->life_phase = floor(seed_unit(c->seed, 4) * 1000.0) / 1000.0; /* exact in a file (3 decimals) */
-        g->wrap[g->n_clouds + i] = sl->extent;
     }
     g->n_clouds = nc;
     g->n_ell = ne;
@@ -91,7 +88,7 @@ int cu_scene_generate(const cu_scene *s, cu_generated *out, cu_error *err)
     return 0;
 }
 
-int cu_scene_expand_layers(cu_scene *s, cu_error *err)
+int cu_scene_expand(cu_scene *s, cu_error *err)
 {
     cu_generated g;
     if (cu_scene_generate(s, &g, err))
@@ -119,3 +116,4 @@ int cu_scene_expand_layers(cu_scene *s, cu_error *err)
     cu_generated_free(&g);
     return 0;
 }
+

@@ -7,7 +7,6 @@
 
 typedef struct cu_generated {
     cu_cloud_spec *spec;  /* n_clouds, every value given (has_* = 1); first/count index ell */
-    double *wrap;         /* n_clouds: the side of the square each wraps around (its layer's extent) */
     cu_ellipsoid *ell;
     int n_clouds, n_ell;
 } cu_generated;
@@ -15,7 +14,5 @@ typedef struct cu_generated {
 /* Every cloud of every [layer] of s (none: empty). Deterministic: the same scene, the same list, bit for bit. */
 int  cu_scene_generate(const cu_scene *s, cu_generated *out, cu_error *err);
 void cu_generated_free(cu_generated *g);
-/* Replaces s's layers by their clouds, appended to its written ones; fails (s unchanged) beyond CU_MAX_CLOUDS or
- * CU_MAX_SCENE_ELLIPSOIDS. The clouds no longer wrap around the layer's extent. */
-int  cu_scene_expand_layers(cu_scene *s, cu_error *err);
+/* cu_scene_expand (include/cumulo.h) replaces s's layers by these clouds. */
 #endif

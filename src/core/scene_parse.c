@@ -60,6 +60,8 @@ cu_cloud_spec cu_scene_cloud(const cu_scene *s, int i)
         c.lifetime = s->cloud_lifetime;
     if (!c.has_life_phase)
         c.life_phase = s->cloud_life_phase;
+    if (!c.has_wrap)
+        c.wrap = s->cloud_wrap;
     return c;
 }
 

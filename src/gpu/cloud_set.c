@@ -21,6 +21,7 @@ int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *nois
         sl->wind = v3(c.wind[0], 0, -c.wind[1]); /* east, north -> x, -z */
         sl->lifetime = c.lifetime;
         sl->life_phase = c.life_phase;
+        sl->wrap = c.wrap;
         if (c.count > cs->num_ell)
             cs->num_ell = c.count;
     }
@@ -47,7 +48,7 @@ int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *nois
         cu_cloud_build_ellipsoids(&sl->cloud, s, &g.ell[c->first], c->count, c->density_cm3, c->boundary_m,
                                   c->noise_offset, noise);
         sl->wind = v3(c->wind[0], 0, -c->wind[1]);
-        sl->wrap = g.wrap[i];
+        sl->wrap = c->wrap;
         sl->lifetime = c->lifetime;
         sl->life_phase = c->life_phase;
         if (c->count > cs->num_ell)

@@ -9,8 +9,8 @@
 /* "number", "integer", "3 numbers", "enum", "bool". */
 static void type_text(const cu_scene_key *k, char *out, size_t n)
 {
-    static const char *const one[] = {"number", "integer", "enum", "bool"};
-    static const char *const many[] = {"numbers", "integers", "enums", "bools"};
+    static const char *const one[] = {"number", "integer", "enum", "bool", "time"};
+    static const char *const many[] = {"numbers", "integers", "enums", "bools", "times"};
     if (k->count > 1)
         snprintf(out, n, "%d %s", k->count, many[k->type]);
     else
@@ -27,6 +27,10 @@ static void range_text(const cu_scene_key *k, char *out, size_t n, const char *s
             size_t len = strlen(out);
             snprintf(out + len, n - len, "%s%s%s%s", i ? sep : "", quote, k->values[i], quote);
         }
+        return;
+    }
+    if (k->type == CU_KEY_TIME) {
+        snprintf(out, n, "%sISO 8601 UTC, 1900..2100%s", quote, quote);
         return;
     }
     int len = snprintf(out, n, "%s%g, %g]", k->lo_open ? "(" : "[", k->lo, k->hi);

@@ -38,6 +38,10 @@ int pt_ctx_init(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *er
 
 int pt_ctx_set_scene(pt_ctx *c, const cu_scene *s, const char *data_dir, cu_error *err)
 {
+    /* One written cloud or a clear sky: a field of clouds needs a union of media this tracer does not have yet. */
+    if (cu_scene_cloud_count(s) > 1 || s->n_layers > 0)
+        return cu_fail(err, "%s: the path tracer renders one cloud; this scene has %d written clouds and %d [layer]s",
+                       s->name, cu_scene_cloud_count(s), s->n_layers);
     pt_phase_free(&c->phase);
     cu_phase_table_free(&c->table);
     c->scene = *s;

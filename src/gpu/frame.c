@@ -1,0 +1,247 @@
+/* src/gpu/frame.c: one frame: the clouds in view (culled, sorted back to front), their maps at the level of detail
+ * their size on screen asks for, the energy closure, then the sky, each cloud and the tone map, in order. */
+#include "frame.h"
+#include "camera.h"
+#include "error.h"
+#include "glstate.h"
+#include "scene_camera.h"
+#include "upload.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Points the frame context at cloud i: what the passes read of "the cloud". */
+void cu_frame_bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    ctx->cloud = &sl->cloud;
+    ctx->hull_vao = sl->vao;
+    ctx->sun = sl->sun;
+    ctx->slab = sl->slab;
+    ctx->ke_scale = sl->factor;
+    ctx->sun_ext = sl->has_shadow ? sl->shadow.tex[0] : r->pass_shadow.zero_tex;
+    ctx->sun_size = sl->map_size > 0 ? sl->map_size : r->scene.sun_map_size;
+    cu_gpu_scene_set_sun(ctx);
+}
+
+/* A cloud's GL objects, made the first time it is drawn: a field of thousands of clouds pays for the ones seen. */
+static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    if (!sl->vao)
+        cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
+    if (sl->has_maps && sl->want_size <= sl->map_size)
+        return 0; /* maps only grow: a cloud that recedes keeps its sharper maps (no churn at a size boundary) */
+    if (sl->has_maps)
+        cu_cloud_slot_free_maps(sl, &r->gl);
+    sl->map_size = sl->want_size;
+    if (cu_pass_sun_map_create(&r->pass_sun, &r->gl, sl->map_size, &sl->sun_map, &sl->sun, err) ||
+        cu_pass_slab_maps_create(&r->pass_slab, ctx, sl->map_size, sl->slab_map, &sl->slab, err))
+        return 1;
+    sl->has_maps = 1;
+    return 0;
+}
+
+/* The level of detail of a cloud's maps in a field: about a texel per two pixels the cloud covers on screen, a power
+ * of two from 16 up to quality.sun_map_size. A lone cloud always gets quality.sun_map_size. */
+static int map_size_for(const cu_renderer *r, const cu_camera *c, mat4 proj, double radius, int height)
+{
+    int most = r->scene.sun_map_size, size = 16;
+    if (r->clouds.n == 1 || most <= 16)
+        return most;
+    double py = fabs(proj.m[5]);
+    double d = c->ortho ? 1.0 : fmax(v3_len(c->pos), radius);
+    double pixels = radius * py * height / d; /* the cloud's diameter on screen */
+    while (size < most && size < 0.5 * pixels)
+        size *= 2;
+    return size < most ? size : most;
+}
+
+/* Cloud sl's maps seen from the sun (and the zenith), remade when the sun moved or the cloud took a new look; made
+ * at its mature density (ke_scale 1): the shaders scale the optical depths they read by the density now. */
+static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    if (cloud_objects(r, sl, err))
+        return 1;
+    if (sl->maps_valid && v3_dot(sl->maps_sun, ctx->sky->sun_dir) > 1.0 - 1e-12 && sl->zenith_valid)
+        return 0;
+    double f = sl->factor;
+    sl->factor = 1;
+    cu_frame_bind_cloud(r, sl);
+    sl->cloud.ke = sl->ke_rest;
+    cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, &sl->sun);
+    ctx->sun = sl->sun;
+    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, &sl->slab);
+    if (!sl->zenith_valid)
+        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
+    sl->zenith_valid = 1;
+    sl->maps_valid = 1;
+    sl->maps_sun = ctx->sky->sun_dir;
+    sl->factor = f;
+    return 0;
+}
+
+/* The frame's view and projection: the host's matrices, or the scene's [camera] through exactly the float matrices
+ * cu_scene_camera_matrices gives a host, so both are one image by construction (camera.c replaces the depth
+ * planes, so the ones asked for here do not matter). */
+static int frame_matrices(const cu_renderer *r, const cu_frame *f, mat4 *view, mat4 *proj, cu_error *err)
+{
+    float v[16], p[16];
+    if (!f->view) {
+        if (cu_scene_camera_matrices(&r->scene, (double)f->width / f->height, 1.0, 2.0, v, p, err))
+            return 1;
+        *view = cu_camera_mat4(v);
+        *proj = cu_camera_mat4(p);
+        return 0;
+    }
+    *view = cu_camera_mat4(f->view);
+    *proj = cu_camera_mat4(f->projection);
+    return 0;
+}
+
+static int check_frame(const cu_frame *f, cu_error *err)
+{
+    if (f->width < 1 || f->height < 1 || f->width > 16384 || f->height > 16384)
+        return cu_fail(err, "render: bad frame size %dx%d", f->width, f->height);
+    if (!f->view != !f->projection)
+        return cu_fail(err, "render: cu_frame.view and .projection are given together or not at all");
+    return 0;
+}
+
+/* The clouds this frame sees (frustum-culled on each cloud's own bounds; dissolved and zero-density clouds cannot
+ * change a pixel), each with its camera, sorted back to front (Kol Ch. 4: "OpenGL taking care of blending by
+ * rendering them in a back-to-front order"). Returns how many. */
+static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
+{
+    int n = 0;
+    double k = cu_hull_scale(r->scene.hull_tessellation);
+    for (int i = 0; i < r->clouds.n; i++) {
+        cu_cloud_slot *sl = &r->clouds.slot[i];
+        if (!(sl->factor * sl->ke_rest > 0) || sl->cloud.n == 0)
+            continue;
+        cu_camera *c = &r->cams[i];
+        if (cu_camera_build(c, view, proj, sl->cloud.origin, sl->cloud.bound_radius * k, err))
+            return -1;
+        if (!c->visible)
+            continue;
+        sl->want_size = map_size_for(r, c, proj, sl->cloud.bound_radius, r->ctx.height);
+        /* perspective: the eye's distance from the cloud's centre (pos is cloud-local); orthographic: how far along
+         * the view direction the centre lies */
+        r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir) : v3_dot(c->pos, c->pos);
+        r->order[n++] = i;
+    }
+    /* insertion sort by decreasing distance: the order changes little from frame to frame */
+    for (int a = 1; a < n; a++) {
+        int v = r->order[a], b = a;
+        while (b > 0 && r->order_key[r->order[b - 1]] < r->order_key[v]) {
+            r->order[b] = r->order[b - 1];
+            b--;
+        }
+        r->order[b] = v;
+    }
+    return n;
+}
+
+/* The energy closure's gains: one pair for the scene (a field of clouds shares it, pass_energy.c), measured on the
+ * largest cloud in view. */
+static void energy_closure(cu_renderer *r, int visible)
+{
+    int best = -1;
+    for (int j = 0; j < visible; j++) {
+        int i = r->order[j];
+        if (best < 0 || r->clouds.slot[i].cloud.bound_radius > r->clouds.slot[best].cloud.bound_radius)
+            best = i;
+    }
+    if (best < 0)
+        return;
+    cu_cloud_slot *sl = &r->clouds.slot[best];
+    double f = sl->factor;
+    sl->factor = 1;
+    cu_frame_bind_cloud(r, sl);
+    r->ctx.sun_ext = r->pass_shadow.zero_tex; /* the cloud's own budget, as if alone */
+    cu_pass_energy_update(&r->pass_energy, &r->ctx);
+    sl->factor = f;
+    r->ctx.ms_gain[0] = r->pass_energy.gain[0];
+    r->ctx.ms_gain[1] = r->pass_energy.gain[1];
+    r->sun_dirty = 0;
+}
+
+static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
+{
+    cu_gl *gl = &r->gl;
+    cu_gpu_scene *ctx = &r->ctx;
+    mat4 view, proj;
+    if (frame_matrices(r, f, &view, &proj, err) ||
+        cu_pass_tonemap_resize(&r->pass_tonemap, ctx, f->width, f->height, f->linear, err))
+        return 1;
+    ctx->hdr_format = r->pass_tonemap.hdr.format;
+    ctx->width = f->width;
+    ctx->height = f->height;
+    ctx->host_depth.tex = f->depth_texture;
+    ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
+    int visible = visible_clouds(r, view, proj, err);
+    if (visible < 0)
+        return 1;
+    /* Everything seen from the sun first (it draws into the maps' own targets). */
+    for (int j = 0; j < visible; j++)
+        if (cloud_maps(r, &r->clouds.slot[r->order[j]], err))
+            return 1;
+    for (int j = 0; j < visible; j++)
+        if (cu_frame_cloud_shadow(r, r->order[j], err))
+            return 1;
+    if (r->sun_dirty)
+        energy_closure(r, visible);
+    /* The sky's camera: the view's directions alone (the world origin as the cloud frame). */
+    ctx->cloud = &r->none;
+    if (cu_camera_build(&ctx->camera, view, proj, v3(0, 0, 0), 1.0, err) || cu_frame_ground_shadow(r, err))
+        return 1;
+
+    gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
+    gl->Viewport(0, 0, f->width, f->height);
+    gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
+    gl->Disable(GL_BLEND);
+    gl->DepthMask(GL_TRUE);
+    gl->ClearDepthf(1.0f);
+    gl->ClearStencil(0);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
+    gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
+    if (!f->clouds_only)
+        cu_pass_sky_draw(&r->pass_sky, ctx);
+    for (int j = 0; j < visible; j++) {
+        cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
+        cu_frame_bind_cloud(r, sl);
+        sl->cloud.ke = sl->ke_rest;
+        ctx->camera = r->cams[r->order[j]];
+        if (j > 0) /* each cloud's depth pre-pass and stencil of its own */
+            gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        cu_pass_cloud_draw(&r->pass_cloud, ctx);
+    }
+    /* The context keeps the nearest cloud's camera (what tests and a debugger see of "this frame"), or says that no
+     * cloud was in view. */
+    if (visible == 0)
+        ctx->camera.visible = 0;
+    ctx->ke_scale = 1;
+    cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
+    GLenum e = gl->GetError();
+    if (e != GL_NO_ERROR)
+        return cu_fail(err, "render: GL error 0x%x", e);
+    return 0;
+}
+
+int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
+{
+    if (!r->has_scene)
+        return cu_fail(err, "render: no scene set");
+    if (check_frame(f, err))
+        return 1;
+    cu_gl *gl = &r->gl;
+    while (gl->GetError() != GL_NO_ERROR) {
+    }
+    cu_glstate st;
+    cu_glstate_enter(gl, &st);
+    int rc = render_frame(r, f, err);
+    cu_glstate_leave(gl, &st);
+    return rc;
+}

@@ -1,0 +1,139 @@
+/* src/gpu/frame_shadow.c: the frame's shadows of clouds on clouds and on the ground (pass_shadow.c draws them):
+ * which clouds cast onto which, over what square, and when a map must be remade. */
+#include "frame.h"
+#include <math.h>
+#include <stdint.h>
+
+/* FNV-1a over what a shadow map depends on, so it is remade only when that changed. */
+static uint64_t sig_add(uint64_t h, double v)
+{
+    int64_t q = (int64_t)llround(v);
+    for (int i = 0; i < 8; i++) {
+        h ^= (uint64_t)(q >> (8 * i)) & 0xff;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+/* The texels [x0, x1) x [y0, y1) of a size-texel map of half-side R about 0 that a disc of radius rad at (u, v)
+ * (metres on the map's axes) covers. */
+static void disc_rect(double u, double v, double rad, double R, int size, int rect[4])
+{
+    double k = 0.5 * size / R, cu = (u / R * 0.5 + 0.5) * size, cv = (v / R * 0.5 + 0.5) * size;
+    rect[0] = (int)fmax(0, floor(cu - rad * k) - 1);
+    rect[1] = (int)fmax(0, floor(cv - rad * k) - 1);
+    rect[2] = (int)fmin(size, ceil(cu + rad * k) + 1);
+    rect[3] = (int)fmin(size, ceil(cv + rad * k) + 1);
+}
+
+/* Cloud i's shadow from the others: the casters are the clouds nearer the sun whose discs seen from the sun overlap
+ * its own (for clouds that do not interpenetrate, every sun ray meets a caster before this cloud); their optical
+ * depths along the sun add up over its sun-map square. Remade when the casters, their densities, their offsets or
+ * the sun changed. */
+int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    cu_cloud_slot *sl = &r->clouds.slot[i];
+    sl->has_shadow = 0;
+    if (!r->shadows || r->clouds.n < 2)
+        return 0;
+    cu_frame_bind_cloud(r, sl);
+    vec3 sd = ctx->sun_dir, rt = ctx->sun_right, up = ctx->sun_up;
+    double Ri = ctx->sun_R;
+    uint64_t sig = 1469598103934665603ull;
+    sig = sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
+    int casters = 0;
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *c = &r->clouds.slot[j];
+        if (j == i || c->cloud.n == 0 || !(c->factor * c->ke_rest > 0))
+            continue;
+        vec3 d = v3_sub(c->cloud.origin, sl->cloud.origin);
+        double along = v3_dot(d, sd), Rj = c->cloud.bound_radius;
+        vec3 perp = v3_sub(d, v3_scale(sd, along));
+        if (along <= 0 || v3_len(perp) > sl->cloud.bound_radius + Rj)
+            continue;
+        casters++;
+        sig = sig_add(sig_add(sig, j), 64.0 * c->factor);
+        sig = sig_add(sig_add(sig_add(sig, 4.0 * d.x), 4.0 * d.y), 4.0 * d.z);
+    }
+    if (casters == 0)
+        return 0;
+    int size = sl->map_size / 2 > 16 ? sl->map_size / 2 : 16;
+    if (sl->shadow.fbo && sl->shadow.width != size)
+        cu_target_delete(&sl->shadow, &r->gl);
+    if (!sl->shadow.fbo && cu_pass_shadow_target(&r->gl, size, &sl->shadow, err))
+        return 1;
+    sl->has_shadow = 1;
+    if (sig == sl->shadow_sig)
+        return 0;
+    sl->shadow_sig = sig;
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size);
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *c = &r->clouds.slot[j];
+        if (j == i || c->cloud.n == 0 || !(c->factor * c->ke_rest > 0))
+            continue;
+        vec3 d = v3_sub(c->cloud.origin, sl->cloud.origin);
+        double along = v3_dot(d, sd), Rj = c->cloud.bound_radius;
+        vec3 perp = v3_sub(d, v3_scale(sd, along));
+        if (along <= 0 || v3_len(perp) > sl->cloud.bound_radius + Rj)
+            continue;
+        /* texel (u, v): the point of cloud i's map plane, in j's frame, moved toward the sun before j */
+        vec3 o = v3_add(v3_scale(d, -1.0), v3_scale(sd, along + Rj + 1.0));
+        int rect[4];
+        disc_rect(v3_dot(d, rt), v3_dot(d, up), Rj, Ri, size, rect);
+        cu_pass_shadow_add(&r->pass_shadow, ctx, &c->cloud, c->ke_rest * c->factor, o, v3_scale(rt, Ri),
+                           v3_scale(up, Ri), size, rect);
+    }
+    cu_pass_shadow_end(ctx);
+    return 0;
+}
+
+/* The clouds' shadow on the ground: their optical depth toward the sun over a square about the camera (its side
+ * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), remade
+ * when the clouds, the sun or the square moved. */
+int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    ctx->ground_tau = r->pass_shadow.zero_tex;
+    ctx->ground_map = v3(0, 0, 1);
+    vec3 sd = ctx->sky->sun_dir, eye = ctx->camera.pos;
+    if (!r->shadows || r->scene.sky_model == CU_SKY_CONSTANT || sd.y < 0.02 || ctx->camera.ortho || eye.y <= 0)
+        return 0;
+    const int size = 512;
+    double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
+    vec3 c = v3(snap * floor(eye.x / snap + 0.5), 0, snap * floor(eye.z / snap + 0.5));
+    uint64_t sig = 1469598103934665603ull;
+    sig = sig_add(sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z), c.x);
+    sig = sig_add(sig_add(sig, c.z), S);
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        sig = sig_add(sig_add(sig_add(sig_add(sig, 64.0 * cl->factor), 4.0 * cl->cloud.origin.x), 4.0 * cl->cloud.origin.y),
+                      4.0 * cl->cloud.origin.z);
+    }
+    if (!r->ground.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground, err))
+        return 1;
+    ctx->ground_tau = r->ground.tex[0];
+    ctx->ground_map = v3(c.x, c.z, S);
+    if (sig == r->ground_sig)
+        return 0;
+    r->ground_sig = sig;
+    cu_gpu_scene_set_sun(ctx);
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, &r->ground, size);
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0))
+            continue;
+        vec3 o = cl->cloud.origin;
+        double Rj = cl->cloud.bound_radius, D = (o.y + Rj) / sd.y + 1.0;
+        /* where its centre's shadow falls, and how far the shadow reaches (stretched by the low sun) */
+        vec3 g = v3_sub(o, v3_scale(sd, o.y / sd.y));
+        int rect[4];
+        disc_rect(g.x - c.x, g.z - c.z, Rj / sd.y, 0.5 * S, size, rect);
+        vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
+        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * cl->factor, origin, v3(0.5 * S, 0, 0),
+                           v3(0, 0, 0.5 * S), size, rect);
+    }
+    cu_pass_shadow_end(ctx);
+    return 0;
+}
+
