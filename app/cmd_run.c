@@ -125,7 +125,7 @@ static int take_option(run_args *a, int c, const char *name, char *v)
     case OPT_NO_STDIN: a->no_stdin = 1; return 0;
     case OPT_MODE: a->dopt.mode = v; return 0;
     case OPT_DEVICE: a->dopt.device = v; return 0;
-    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, &a->sun.accel);
+    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, &a->sun.speed.accel);
     case OPT_FRAMES:
         if (cli_parse_counts(v, 0, 1, 1, 2000000000L, &a->frames_max)) {
             fprintf(stderr, "cumulo: %s expects a whole number in 1..2000000000, got '%s'\n", name, v);

@@ -53,7 +53,7 @@ CHECK_TESTS += tests/app/test_sun_cli.sh
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
 $(eval $(call test_program,test_input,tests/platform/test_input.c platform/input/input.c \
-  platform/input/stdin_input.c platform/input/sun_control.c,,))
+  platform/input/stdin_input.c platform/input/sun_control.c platform/input/knob_speed.c,,))
 $(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c platform/input/input.c,,))
 $(eval $(call test_program,test_drm_mode,tests/platform/test_drm_mode.c platform/display/drm_mode.c,,))
 $(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c tests/platform/fake_dir.c platform/input/evdev.c \

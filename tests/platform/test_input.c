@@ -193,7 +193,7 @@ static void test_sun_knob_and_toggle(void **state)
     (void)state;
     cu_sun_ctl c;
     cu_sun_ctl_init(&c, 30, 350);
-    c.accel = 0;
+    c.speed.accel = 0;
     cu_action a = { .kind = CU_ACT_TURN, .detents = 15 };
     assert_int_equal(cu_sun_ctl_apply(&c, &a), 1);
     assert_true(c.az == 5.0 && c.el == 30.0);          /* wraps past north */
@@ -262,12 +262,12 @@ static void test_sun_acceleration(void **state)
     cu_sun_ctl c;
     cu_sun_ctl_init(&c, 30, 0);
     /* Slow: 2 detents/s -> exactly one degree per detent. */
-    assert_true(cu_sun_ctl_gain(&c, 1, 500000000u) == 1.0);
+    assert_true(cu_knob_speed_gain(&c.speed, 1, 500000000u) == 1.0);
     /* 20 detents/s -> 1 + 0.25 * 16 = 5. */
-    double g = cu_sun_ctl_gain(&c, 1, 50000000u);
+    double g = cu_knob_speed_gain(&c.speed, 1, 50000000u);
     assert_true(g > 4.999 && g < 5.001);
     /* Very fast: capped. */
-    assert_true(cu_sun_ctl_gain(&c, 4, 1000000u) == 8.0);
+    assert_true(cu_knob_speed_gain(&c.speed, 4, 1000000u) == 8.0);
     /* A sequence of turns: the first is exact (no previous time), a fast follow-up is amplified, one after a
      * long pause is exact again. */
     cu_action a = { .kind = CU_ACT_TURN, .detents = 1, .t_ns = 1000000000u };
