@@ -1,5 +1,5 @@
 /* tests/platform/test_input.c: `--input` parsing (good and bad), the stdin command language and its line splitter, and
- * the sun mapping (axis toggle, acceleration, limits). */
+ * the sun mapping (axis toggle, acceleration, limits). The clock's offset: test_clock.c. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -127,6 +127,11 @@ static void test_stdin_commands(void **state)
     assert_int_equal(a.kind, CU_ACT_TOGGLE);
     assert_int_equal(cu_stdin_parse("quit", &a, err, sizeof err), 0);
     assert_int_equal(a.kind, CU_ACT_QUIT);
+    assert_int_equal(cu_stdin_parse("offset -90.5", &a, err, sizeof err), 0);
+    assert_int_equal(a.kind, CU_ACT_SET_OFFSET);
+    assert_true(a.minutes == -90.5);
+    assert_int_equal(cu_stdin_parse("offset 1440", &a, err, sizeof err), 0);
+    assert_true(a.minutes == 1440.0);
     assert_int_equal(cu_stdin_parse("status\r", &a, err, sizeof err), 0);
     assert_int_equal(a.kind, CU_ACT_STATUS);
     assert_int_equal(cu_stdin_parse("", &a, err, sizeof err), 0);
@@ -135,7 +140,8 @@ static void test_stdin_commands(void **state)
     assert_int_equal(a.kind, CU_ACT_NONE);
 
     static const char *bad[] = { "sun 35", "sun 95 10", "sun x 10", "sun 10 nan", "sun 1 2 3", "el", "az 1e9",
-                                 "turn 1.5", "turn", "quit now", "dance", "sun 10 20 30 40 50" };
+                                 "turn 1.5", "turn", "quit now", "dance", "sun 10 20 30 40 50", "offset",
+                                 "offset 1441", "offset -2000", "offset 1 2", "offset inf", "offset 30min" };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err[0] = '\0';
         if (cu_stdin_parse(bad[i], &a, err, sizeof err) == 0)
