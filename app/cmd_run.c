@@ -1,10 +1,12 @@
 /* app/cmd_run.c: `cumulo run` — the interactive/kiosk loop: a display back end (drm, x11, wayland, headless),
- * inputs that move the sun (GPIO knob, evdev keyboards and dials, stdin commands), and the renderer. */
+ * inputs that move the sun (GPIO knob, evdev keyboards and dials, stdin commands) or, with --clock, the time of day
+ * the sun follows, and the renderer. */
 #include "config.h"
 #include "commands.h"
 #include "session.h"
 #include "drm_mode.h"
 #include "input_set.h"
+#include "run_clock.h"
 #include "sun_control.h"
 #include <errno.h>
 #include <getopt.h>
@@ -30,7 +32,11 @@ typedef struct run_args {
     long frames_max;
     long wait_display;              /* seconds to retry opening the display (--wait-display) */
     const char *el_range, *az_range;
+    const char *step;               /* --step: degrees, or minutes with --clock (read once all options are in) */
     cu_sun_ctl sun;                 /* the knob settings; the sun itself comes from the scene */
+    int clock;                      /* --clock: the sun follows the wall clock, the knob offsets the time */
+    const char *clock_only;         /* the first of --clock-offset and --time-scale given: they need --clock */
+    cu_clock_ctl clk;               /* --clock-offset, --time-scale, the knob's minutes */
 } run_args;
 
 /* The display, its renderer and the scene, opened as every subcommand opens them (app/session.c). */
@@ -48,13 +54,16 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: cumulo run SCENE [--platform drm|x11|wayland|headless] [--frames N] [--size WxH] [--fullscreen]\n"
         "                  [--mode WxH[@Hz]] [--device /dev/dri/cardN] [--input SPEC]... [--no-stdin]\n"
-        "                  [--knob azimuth|elevation] [--step DEG] [--accel K] [--sun-elevation-range MIN:MAX]\n"
-        "                  [--sun-azimuth-range MIN:MAX] [--set section.key=value]... [-v]\n"
+        "                  [--knob azimuth|elevation] [--step N] [--accel K] [--sun-elevation-range MIN:MAX]\n"
+        "                  [--sun-azimuth-range MIN:MAX] [--clock [--clock-offset S] [--time-scale K]]\n"
+        "                  [--set section.key=value]... [-v]\n"
         "  --input gpio:chip=gpiochip0,a=17,b=27[,button=22][,steps=4][,debounce=1000]   rotary encoder (libgpiod)\n"
         "  --input evdev:/dev/input/event3 | evdev:name=NAME   keyboard (arrows, +/-) or dial (USB knob, encoder)\n"
-        "  --input stdin       commands: sun EL AZ | elevation EL | azimuth AZ | turn N | toggle | status | quit\n"
+        "  --input stdin       commands: sun EL AZ | elevation EL | azimuth AZ | turn N | toggle | offset MINUTES |\n"
+        "                      status | quit\n"
         "  stdin is read by default unless --no-stdin. Each sun change is logged on stderr as\n"
-        "  'sun elevation=E azimuth=A source=S'.\n"
+        "  'sun elevation=E azimuth=A source=S'; with --clock each change of the offset as\n"
+        "  'clock utc=T offset=+Mmin elevation=E azimuth=A source=S'.\n"
         "  --platform NAME     display back end (default headless): drm full screen on DRM/KMS, x11 or wayland window\n"
         "  --frames N          stop after N frames (default: run until quit, SIGINT or SIGTERM)\n"
         "  --fullscreen        windowed back ends: cover the screen\n"
@@ -64,9 +73,19 @@ static void usage(FILE *f)
         "                      come late; default 0)\n"
         "  --no-stdin          do not read commands from standard input (kiosks, systemd)\n"
         "  --knob AXIS         what the knob turns first: azimuth (default) or elevation; the button toggles\n"
-        "  --step DEG          degrees per detent, 0.001..90 (default 1; elevation moves half of it)\n"
+        "  --step N            per detent: degrees, 0.001..90 (default 1; elevation moves half of it); with --clock\n"
+        "                      minutes of the time of day, 0.001..1440 (default 10)\n"
         "  --accel K           acceleration of fast turns, 0..100 (default 0.25; 0: none)\n"
         "  --sun-elevation-range MIN:MAX, --sun-azimuth-range MIN:MAX   limits of the knob (degrees)\n"
+        "  --clock             the sun follows the real clock (UTC) at the scene's [sun] latitude and longitude, the\n"
+        "                      clouds drift in real time from its [scene] time. The knob, +/- and left/right offset\n"
+        "                      the time of day by --step minutes (up/down: an hour), the button puts the offset back\n"
+        "                      to 0, stdin 'offset MINUTES' sets it (-1440..1440); 'sun', 'elevation' and 'azimuth'\n"
+        "                      are refused, --knob and the ranges do not apply, 'status' prints the time shown\n"
+        "  --clock-offset S    with --clock: shift the clock by S seconds, -1e9..1e9 (default 0; -21600: the sky of\n"
+        "                      six hours ago)\n"
+        "  --time-scale K      with --clock: the clock runs K times as fast, 0 < K <= 1e6 (default 1; 1440: a day a\n"
+        "                      minute); the clouds keep real time\n"
         "  --size WxH, --set SECTION.KEY=V, --data-dir DIR, -v   as for cumulo render (cumulo render --help)\n"
         "  -h, --help, --version\n");
     fprintf(f, "display back ends in this build:");
@@ -93,7 +112,7 @@ static int parse_number(const char *opt, const char *v, double lo, double hi, do
     char *end;
     double x = strtod(v, &end);
     if (end == v || *end || !(x >= lo && x <= hi)) {
-        fprintf(stderr, "cumulo: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
+        fprintf(stderr, "cumulo run: %s expects a number in %g..%g, got '%s'\n", opt, lo, hi, v);
         return 1;
     }
     *out = x;
@@ -102,7 +121,8 @@ static int parse_number(const char *opt, const char *v, double lo, double hi, do
 
 /* Above app/session.h's CLI_OPT_* ids, which the common options keep. */
 enum { OPT_FULLSCREEN = 0x200, OPT_NO_STDIN, OPT_FRAMES, OPT_MODE, OPT_DEVICE, OPT_INPUT, OPT_KNOB,
-       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION, OPT_WAIT_DISPLAY };
+       OPT_STEP, OPT_ACCEL, OPT_EL_RANGE, OPT_AZ_RANGE, OPT_VERSION, OPT_WAIT_DISPLAY, OPT_CLOCK, OPT_CLOCK_OFFSET,
+       OPT_TIME_SCALE };
 
 #define ARG(name, id) { name, required_argument, NULL, id }
 #define FLAG(name, id) { name, no_argument, NULL, id }
@@ -112,6 +132,7 @@ static const struct option long_opts[] = {
     ARG("frames", OPT_FRAMES), ARG("mode", OPT_MODE), ARG("device", OPT_DEVICE), ARG("input", OPT_INPUT),
     ARG("knob", OPT_KNOB), ARG("step", OPT_STEP), ARG("accel", OPT_ACCEL), ARG("sun-elevation-range", OPT_EL_RANGE),
     ARG("sun-azimuth-range", OPT_AZ_RANGE), ARG("wait-display", OPT_WAIT_DISPLAY), ARG("data-dir", CLI_OPT_DATA_DIR), FLAG("version", OPT_VERSION),
+    FLAG("clock", OPT_CLOCK), ARG("clock-offset", OPT_CLOCK_OFFSET), ARG("time-scale", OPT_TIME_SCALE),
     { NULL, 0, NULL, 0 },
 };
 
@@ -125,7 +146,16 @@ static int take_option(run_args *a, int c, const char *name, char *v)
     case OPT_NO_STDIN: a->no_stdin = 1; return 0;
     case OPT_MODE: a->dopt.mode = v; return 0;
     case OPT_DEVICE: a->dopt.device = v; return 0;
-    case OPT_ACCEL: return parse_number(name, v, 0.0, 100.0, &a->sun.accel);
+    case OPT_ACCEL:
+        if (parse_number(name, v, 0.0, 100.0, &a->sun.speed.accel))
+            return 1;
+        a->clk.speed.accel = a->sun.speed.accel;
+        return 0;
+    case OPT_CLOCK: a->clock = 1; return 0;
+    case OPT_CLOCK_OFFSET:
+    case OPT_TIME_SCALE:
+        a->clock_only = a->clock_only ? a->clock_only : c == OPT_CLOCK_OFFSET ? "--clock-offset" : "--time-scale";
+        return run_clock_option(&a->clk, name, v);
     case OPT_FRAMES:
         if (cli_parse_counts(v, 0, 1, 1, 2000000000L, &a->frames_max)) {
             fprintf(stderr, "cumulo: %s expects a whole number in 1..2000000000, got '%s'\n", name, v);
@@ -138,11 +168,7 @@ static int take_option(run_args *a, int c, const char *name, char *v)
             return 1;
         }
         return 0;
-    case OPT_STEP:
-        if (parse_number(name, v, 0.001, 90.0, &a->sun.step_az))
-            return 1;
-        a->sun.step_el = a->sun.step_az / 2.0;
-        return 0;
+    case OPT_STEP: a->step = v; return 0;
     case CLI_OPT_SIZE: case CLI_OPT_BACKEND: case CLI_OPT_SET: case CLI_OPT_DATA_DIR:
         return cli_common_getopt(&a->o, c, v, "cumulo") < 0;
     case OPT_EL_RANGE: a->el_range = v; return 0;
@@ -169,6 +195,7 @@ static int parse_args(run_args *a, int argc, char **argv)
 {
     memset(a, 0, sizeof *a);
     cu_sun_ctl_init(&a->sun, 0, 0);
+    cu_clock_ctl_init(&a->clk);
     opterr = 0;
     optind = 1;
     for (;;) {
@@ -205,7 +232,23 @@ static int parse_args(run_args *a, int argc, char **argv)
         usage(stderr);
         return 2;
     }
-    /* The values checked once all are in: a later --sun-*-range replaces an earlier one, as it always has. */
+    if (a->clock_only && !a->clock) {
+        fprintf(stderr, "cumulo run: %s needs --clock\n", a->clock_only);
+        return 2;
+    }
+    /* The values checked once all are in: a later --sun-*-range replaces an earlier one, as it always has; --step is
+     * minutes or degrees as --clock, wherever it stands, says. */
+    double step;
+    if (a->step && a->clock) {
+        if (parse_number("--step", a->step, 0.001, CU_OFFSET_MAX_MIN, &step))
+            return 2;
+        a->clk.step_s = step * 60.0;
+    } else if (a->step) {
+        if (parse_number("--step", a->step, 0.001, 90.0, &step))
+            return 2;
+        a->sun.step_az = step;
+        a->sun.step_el = step / 2.0;
+    }
     char err[512];
     cu_sun_limits *lim = &a->sun.lim;
     int mw, mh;
@@ -279,13 +322,19 @@ static int open_session(run_session *s, run_args *a)
 static const char *axis_name(cu_sun_axis axis) { return axis == CU_SUN_AZIMUTH ? "azimuth" : "elevation"; }
 
 /* Applies what the inputs said, one sun pass however many detents or commands came. Returns 1 on quit. */
-static int apply_actions(const cu_action *acts, const char **source, int n, cu_sun_ctl *sun, cu_renderer *r,
-                         long frames)
+static int apply_actions(const cu_action *acts, const char **source, int n, cu_sun_ctl *sun, run_clock *clock,
+                         cu_renderer *r, long frames)
 {
     int moved = 0, k;
     cu_error e;
     for (k = 0; k < n && acts[k].kind != CU_ACT_QUIT; k++) {
         const cu_action *a = &acts[k];
+        if (clock) {
+            run_clock_action(clock, a, source[k], r, frames);
+            continue;
+        }
+        if (a->kind == CU_ACT_SET_OFFSET)
+            fprintf(stderr, "%s: 'offset' needs --clock (without it the knob turns the sun's angles)\n", source[k]);
         if (a->kind == CU_ACT_STATUS) {
             printf("status elevation=%.3f azimuth=%.3f knob=%s frames=%ld\n", sun->el, sun->az,
                    axis_name(sun->axis), frames);
@@ -315,7 +364,7 @@ static void init_sun(cu_sun_ctl *sun, const run_args *a, cu_renderer *r)
 }
 
 /* glmark2-style header: GL strings, surface, inputs, sun. */
-static void print_header(const run_session *s, const run_args *a, const cu_sun_ctl *sun)
+static void print_header(const run_session *s, const run_args *a, const cu_sun_ctl *sun, const run_clock *clock)
 {
     unsigned fbo;
     int w, h;
@@ -329,21 +378,26 @@ static void print_header(const run_session *s, const run_args *a, const cu_sun_c
            cu_renderer_gl_string(s->r, 1), cu_renderer_gl_string(s->r, 2));
     printf("    Surface:       %s\n    Size:          %dx%d\n    Inputs:        %s\n", surface, w, h,
            inputs[0] ? inputs : "(none)");
-    printf("    Sun:           elevation=%.3f azimuth=%.3f knob=%s\n%s\n", sun->el, sun->az, axis_name(sun->axis), bar);
+    if (clock)
+        run_clock_header(clock, s->r);
+    else
+        printf("    Sun:           elevation=%.3f azimuth=%.3f knob=%s\n", sun->el, sun->az, axis_name(sun->axis));
+    printf("%s\n", bar);
     fflush(stdout);
 }
 
 /* A missing or vanished input is a warning, never the end: a kiosk unit (Restart=always) that exited here would
  * restart into the same missing device forever and show no sky at all. */
-static void warn_inputs_gone(const cu_input_set *in, const char *what)
+static void warn_inputs_gone(const cu_input_set *in, const char *what, int clock)
 {
     int open, ended;
     cu_input_set_left(in, &open, &ended);
     fprintf(stderr, "cumulo: warning: %s (see above); the sky keeps running %s\n", what,
-            open ? "with the inputs left" : "with no input (the sun stays where it is)");
+            open ? "with the inputs left"
+                 : clock ? "with no input (the sun follows the clock)" : "with no input (the sun stays where it is)");
 }
 
-static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
+static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clock)
 {
     /* Headless without a frame count has no vsync: wait for input up to a 60 Hz frame instead of spinning. */
     int idle_headless = (!strcmp(s->be->name, "egl") || !strcmp(s->be->name, "osmesa")) && !a->frames_max;
@@ -355,14 +409,16 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun)
         cu_action acts[MAX_ACTIONS];
         const char *source[MAX_ACTIONS];
         int n = cu_input_set_poll(&a->inputs, idle_headless ? 16 : 0, acts, source, MAX_ACTIONS);
-        if (apply_actions(acts, source, n, sun, s->r, frames))
+        if (apply_actions(acts, source, n, sun, clock, s->r, frames))
             break;
         if (!cu_input_set_left(&a->inputs, &any_open, &any_ended) && steered) {
-            warn_inputs_gone(&a->inputs, "no requested input is left");
+            warn_inputs_gone(&a->inputs, "no requested input is left", clock != NULL);
             steered = 0;
         }
         if (idle_headless && !any_open && any_ended)
-            break; /* the command stream ended and there is no frame count: nothing can change any more */
+            break; /* the command stream ended and there is no frame count: nothing more can be asked or seen */
+        if (clock)
+            run_clock_tick(clock, s->r);
         unsigned fbo;
         int w, h, pr;
         char err[512];
@@ -417,12 +473,16 @@ int cmd_run(int argc, char **argv)
         if (cu_input_set_open(&a.inputs, &io) == 0 && a.inputs.nrequired) {
             char what[96];
             snprintf(what, sizeof what, "none of the %d requested inputs could be opened", a.inputs.nrequired);
-            warn_inputs_gone(&a.inputs, what);
+            warn_inputs_gone(&a.inputs, what, a.clock);
         }
         cu_sun_ctl sun;
-        init_sun(&sun, &a, s.r);
-        print_header(&s, &a, &sun);
-        rc = run_loop(&s, &a, &sun);
+        run_clock clock;
+        if (a.clock)
+            run_clock_start(&clock, &a.clk, s.scene, a.o.scene_path, s.r);
+        else
+            init_sun(&sun, &a, s.r);
+        print_header(&s, &a, &sun, a.clock ? &clock : NULL);
+        rc = run_loop(&s, &a, &sun, a.clock ? &clock : NULL);
     }
     cu_input_set_close(&a.inputs);
     cli_session_close(&s); /* DRM: puts the previous CRTC (the console) back */

@@ -59,6 +59,10 @@ void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], d
  * as passing NULL. Fails for a non-positive or non-finite aspect or planes (0 < znear < zfar). */
 int  cu_scene_camera_matrices(const cu_scene *s, double aspect, double znear, double zfar, float view[16],
                               float projection[16], cu_error *err);
+/* The scene's [sun] latitude and longitude in degrees (north and east positive), where a host shows the sun of its
+ * own clock (cu_solar_position_at). Returns 1 when the scene (or --set) gave either key, 0 when both are the defaults,
+ * 0 N 0 E. */
+int  cu_scene_sun_place(const cu_scene *s, double *latitude_deg, double *longitude_deg);
 void cu_scene_free(cu_scene *s);
 /* Replaces the scene's [layer]s by the clouds they generate, as written [cloud] sections (each with the layer's wind,
  * lifetime and wrap, and a life phase and noise offset of its own), so it renders exactly as before and a user can

@@ -9,7 +9,8 @@ DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platfor
 # The knob's logic (gpio.c) is the same for both libgpiod APIs; the glue is the one configure found (GPIO_API 1 or 2).
 GPIO_SRCS    := platform/input/gpio.c platform/input/gpio_errors.c platform/input/gpio_v$(GPIO_API).c
 INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/input/input_set.c platform/input/evdev.c \
-                platform/input/stdin_input.c platform/input/quadrature.c platform/input/sun_control.c \
+                platform/input/stdin_input.c platform/input/quadrature.c platform/input/knob_speed.c \
+                platform/input/sun_control.c platform/input/clock_control.c \
                 $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
 PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)

@@ -53,7 +53,10 @@ CHECK_TESTS += tests/app/test_sun_cli.sh
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))
 $(eval $(call test_program,test_input,tests/platform/test_input.c platform/input/input.c \
-  platform/input/stdin_input.c platform/input/sun_control.c,,))
+  platform/input/stdin_input.c platform/input/sun_control.c platform/input/knob_speed.c,,))
+# --clock: the knob's offset of the time of day and the time shown (cumulo run --clock end to end: test_run_clock.sh).
+$(eval $(call test_program,test_clock,tests/platform/test_clock.c platform/input/clock_control.c \
+  platform/input/knob_speed.c,,))
 $(eval $(call test_program,test_evdev,tests/platform/test_evdev.c platform/input/evdev.c platform/input/input.c,,))
 $(eval $(call test_program,test_drm_mode,tests/platform/test_drm_mode.c platform/display/drm_mode.c,,))
 $(eval $(call test_program,test_evdev_dev,tests/platform/test_evdev_dev.c tests/platform/fake_dir.c platform/input/evdev.c \
@@ -73,7 +76,8 @@ endif
 # The input set with every input back end of this build, through the table in input_backend.c.
 $(eval $(call test_program,test_input_set,tests/platform/test_input_set.c $(filter platform/input/%,$(INPUT_SRCS)),\
   $(GPIO_CFLAGS),$(GPIO_LIBS)))
-CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_gpio_sim.sh tests/platform/test_soak.sh
+CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_run_clock.sh tests/platform/test_gpio_sim.sh \
+               tests/platform/test_soak.sh
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))

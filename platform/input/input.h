@@ -15,6 +15,7 @@ typedef enum cu_action_kind {
     CU_ACT_SET_SUN,   /* absolute elevation and azimuth, degrees */
     CU_ACT_SET_EL,
     CU_ACT_SET_AZ,
+    CU_ACT_SET_OFFSET,/* --clock: the offset of the time of day, minutes */
     CU_ACT_STATUS,    /* print the current sun */
     CU_ACT_QUIT
 } cu_action_kind;
@@ -23,8 +24,11 @@ typedef struct cu_action {
     cu_action_kind kind;
     int detents;
     double el, az;
+    double minutes;   /* CU_ACT_SET_OFFSET, within +-CU_OFFSET_MAX_MIN */
     uint64_t t_ns;    /* when it happened (CLOCK_MONOTONIC for devices, 0 = now) */
 } cu_action;
+
+#define CU_OFFSET_MAX_MIN 1440 /* the clock's offset, minutes: a day either way reaches every time of day */
 
 typedef enum cu_input_kind { CU_INPUT_GPIO = 1, CU_INPUT_EVDEV, CU_INPUT_STDIN } cu_input_kind;
 

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#define CMDS "sun EL AZ, elevation EL, azimuth AZ, turn N, toggle, status, quit"
+#define CMDS "sun EL AZ, elevation EL, azimuth AZ, turn N, toggle, offset MINUTES, status, quit"
 
 /* Splits into at most 4 words; returns the count, or 5 for too many. */
 static int split(char *s, char *w[4])
@@ -103,6 +103,16 @@ int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen)
         }
         out->kind = CU_ACT_TURN;
         out->detents = (int)x;
+        return 0;
+    }
+    if (!strcmp(c, "offset")) {
+        if (n != 2 || number(w[1], -CU_OFFSET_MAX_MIN, CU_OFFSET_MAX_MIN, &x)) {
+            snprintf(err, errlen, "stdin: 'offset' needs minutes in -%d..%d, e.g. 'offset 90'", CU_OFFSET_MAX_MIN,
+                     CU_OFFSET_MAX_MIN);
+            return 1;
+        }
+        out->kind = CU_ACT_SET_OFFSET;
+        out->minutes = x;
         return 0;
     }
     struct { const char *name; cu_action_kind kind; } simple[] = {

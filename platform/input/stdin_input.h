@@ -8,7 +8,8 @@
  *   sun EL AZ        set elevation and azimuth (degrees)
  *   elevation EL     (or: el EL)      azimuth AZ (or: az AZ)
  *   turn N           N detents of the knob (negative: counter-clockwise)
- *   toggle           the knob's button: switch between azimuth and elevation
+ *   toggle           the knob's button: switch between azimuth and elevation (--clock: reset the offset)
+ *   offset MINUTES   --clock: show the clock plus MINUTES (-1440..1440; 0: the clock itself)
  *   status           print the current sun          quit (or: exit)   stop the program
  * Returns 0 with out->kind (CU_ACT_NONE for a blank line), or non-zero with a one-line message. */
 int cu_stdin_parse(const char *line, cu_action *out, char *err, size_t errlen);

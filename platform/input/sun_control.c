@@ -16,9 +16,7 @@ void cu_sun_ctl_init(cu_sun_ctl *c, double el, double az)
     c->lim.az_max = 360.0;
     c->step_az = 1.0;
     c->step_el = 0.5;
-    c->accel = 0.25;
-    c->accel_from = 4.0;
-    c->accel_max = 8.0;
+    cu_knob_speed_init(&c->speed);
     c->el = el;
     c->az = az;
     cu_sun_ctl_clamp(&c->lim, &c->el, &c->az);
@@ -68,17 +66,6 @@ void cu_sun_ctl_clamp(const cu_sun_limits *l, double *el, double *az)
     }
 }
 
-double cu_sun_ctl_gain(const cu_sun_ctl *c, int detents, uint64_t dt_ns)
-{
-    /* A slow turn moves exactly one step per detent (fine positioning); spinning the knob moves faster, so the
-     * whole sky is a few turns away. Speed is detents per second over this event's interval. */
-    if (c->accel <= 0.0 || dt_ns == 0)
-        return 1.0;
-    double rate = fabs((double)detents) / ((double)dt_ns * 1e-9);
-    double g = 1.0 + c->accel * (rate > c->accel_from ? rate - c->accel_from : 0.0);
-    return g > c->accel_max ? c->accel_max : g;
-}
-
 static int move_to(cu_sun_ctl *c, double el, double az)
 {
     cu_sun_ctl_clamp(&c->lim, &el, &az);
@@ -97,13 +84,7 @@ int cu_sun_ctl_apply(cu_sun_ctl *c, const cu_action *a)
     case CU_ACT_TURN_EL: {
         if (a->detents == 0)
             return 0;
-        uint64_t dt = 0;
-        if (a->t_ns && c->t_turn && a->t_ns > c->t_turn)
-            dt = a->t_ns - c->t_turn;
-        if (a->t_ns)
-            c->t_turn = a->t_ns;
-        /* A pause longer than a second starts over at fine steps. */
-        double g = dt && dt < 1000000000u ? cu_sun_ctl_gain(c, a->detents, dt) : 1.0;
+        double g = cu_knob_speed_turn(&c->speed, a);
         cu_sun_axis axis = a->kind == CU_ACT_TURN_AZ ? CU_SUN_AZIMUTH
                          : a->kind == CU_ACT_TURN_EL ? CU_SUN_ELEVATION : c->axis;
         if (axis == CU_SUN_AZIMUTH)

@@ -1,8 +1,9 @@
 /* platform/input/sun_control.h: maps input actions to the sun's elevation and azimuth: which axis the knob drives,
- * the acceleration curve for fast turns, and the limits. Pure: no I/O, no renderer. */
+ * its steps (fast turns accelerate: knob_speed.h), and the limits. Pure: no I/O, no renderer. */
 #ifndef CU_PLATFORM_SUN_CONTROL_H
 #define CU_PLATFORM_SUN_CONTROL_H
 #include "input.h"
+#include "knob_speed.h"
 
 typedef enum cu_sun_axis { CU_SUN_AZIMUTH = 0, CU_SUN_ELEVATION = 1 } cu_sun_axis;
 
@@ -16,10 +17,7 @@ typedef struct cu_sun_ctl {
     cu_sun_axis axis;       /* what the knob drives now; the button toggles it */
     cu_sun_limits lim;
     double step_az, step_el;/* degrees per detent at slow speed */
-    double accel;           /* extra gain per detent/s above `accel_from` (0 = none) */
-    double accel_from;      /* detents per second below which a turn is exact (fine positioning) */
-    double accel_max;       /* cap on the gain */
-    uint64_t t_turn;        /* time of the previous knob turn, for the speed */
+    cu_knob_speed speed;    /* the acceleration of fast turns */
 } cu_sun_ctl;
 
 /* Defaults: knob on azimuth, 1 deg/detent azimuth, 0.5 deg/detent elevation, acceleration 0.25 per detent/s above
@@ -33,8 +31,6 @@ int  cu_sun_parse_range(const char *opt, const char *s, double lo, double hi, do
                         char *err, size_t errlen);
 /* Applies one action. Returns 1 when the sun moved (the caller then calls cu_renderer_set_sun), 0 otherwise. */
 int  cu_sun_ctl_apply(cu_sun_ctl *c, const cu_action *a);
-/* The gain for `detents` turned `dt_ns` after the previous turn (exposed for tests). */
-double cu_sun_ctl_gain(const cu_sun_ctl *c, int detents, uint64_t dt_ns);
 /* Puts (el, az) inside the limits: elevation clamps, azimuth wraps to [0, 360) or clamps to a partial range. */
 void cu_sun_ctl_clamp(const cu_sun_limits *l, double *el, double *az);
 

@@ -1,6 +1,7 @@
-/* src/core/scene_sun.c: a scene's sun at a scene time (see scene_sun.h). */
+/* src/core/scene_sun.c: a scene's sun at a scene time (see scene_sun.h), and its place (cu_scene_sun_place). */
 #include "scene_sun.h"
 #include "error.h"
+#include "scene_keys.h"
 #include "solar.h"
 
 int cu_scene_sun_at(const cu_scene *s, double t, double *el, double *az, cu_error *err)
@@ -23,4 +24,12 @@ int cu_scene_sun_at(const cu_scene *s, double t, double *el, double *az, cu_erro
     *el = a.elevation;
     *az = a.azimuth;
     return 0;
+}
+
+int cu_scene_sun_place(const cu_scene *s, double *latitude_deg, double *longitude_deg)
+{
+    *latitude_deg = s->latitude;
+    *longitude_deg = s->longitude;
+    return s->explicit_key[cu_scene_key_find("sun", "latitude") - cu_scene_keys] ||
+           s->explicit_key[cu_scene_key_find("sun", "longitude") - cu_scene_keys];
 }

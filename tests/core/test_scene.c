@@ -355,6 +355,26 @@ static void test_bom_and_control_bytes(void **st)
     cu_scene_free(s);
 }
 
+/* The place a host's clock shows the sun at (cumulo run --clock): the scene's or --set's, or 0 0 and "not given". */
+static void test_sun_place(void **st)
+{
+    (void)st;
+    cu_scene *s;
+    cu_error e;
+    double lat = 1, lon = 1;
+    assert_int_equal(parse(MIN_SCENE, &s, &e), 0);
+    assert_int_equal(cu_scene_sun_place(s, &lat, &lon), 0);
+    assert_true(lat == 0.0 && lon == 0.0);
+    assert_int_equal(cu_scene_set(s, "sun.longitude=-3.5", &e), 0);
+    assert_int_equal(cu_scene_sun_place(s, &lat, &lon), 1);
+    assert_true(lat == 0.0 && lon == -3.5);
+    cu_scene_free(s);
+    assert_int_equal(parse("[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\nlatitude = 0\n[cloud]\n"
+                           "[ellipsoid]\ncenter = 0 0 0\nradii = 1 2 3\n", &s, &e), 0);
+    assert_int_equal(cu_scene_sun_place(s, &lat, &lon), 1); /* 0 N given is a place, not a default */
+    cu_scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -363,6 +383,7 @@ int main(void)
         cmocka_unit_test(test_nul_byte_and_truncated_binary), cmocka_unit_test(test_bad_set),
         cmocka_unit_test(test_missing_file),          cmocka_unit_test(test_presets),
         cmocka_unit_test(test_set_cross_field),       cmocka_unit_test(test_bom_and_control_bytes),
+        cmocka_unit_test(test_sun_place),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,5 +1,5 @@
 /* tests/platform/test_input.c: `--input` parsing (good and bad), the stdin command language and its line splitter, and
- * the sun mapping (axis toggle, acceleration, limits). */
+ * the sun mapping (axis toggle, acceleration, limits). The clock's offset: test_clock.c. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -127,6 +127,11 @@ static void test_stdin_commands(void **state)
     assert_int_equal(a.kind, CU_ACT_TOGGLE);
     assert_int_equal(cu_stdin_parse("quit", &a, err, sizeof err), 0);
     assert_int_equal(a.kind, CU_ACT_QUIT);
+    assert_int_equal(cu_stdin_parse("offset -90.5", &a, err, sizeof err), 0);
+    assert_int_equal(a.kind, CU_ACT_SET_OFFSET);
+    assert_true(a.minutes == -90.5);
+    assert_int_equal(cu_stdin_parse("offset 1440", &a, err, sizeof err), 0);
+    assert_true(a.minutes == 1440.0);
     assert_int_equal(cu_stdin_parse("status\r", &a, err, sizeof err), 0);
     assert_int_equal(a.kind, CU_ACT_STATUS);
     assert_int_equal(cu_stdin_parse("", &a, err, sizeof err), 0);
@@ -135,7 +140,8 @@ static void test_stdin_commands(void **state)
     assert_int_equal(a.kind, CU_ACT_NONE);
 
     static const char *bad[] = { "sun 35", "sun 95 10", "sun x 10", "sun 10 nan", "sun 1 2 3", "el", "az 1e9",
-                                 "turn 1.5", "turn", "quit now", "dance", "sun 10 20 30 40 50" };
+                                 "turn 1.5", "turn", "quit now", "dance", "sun 10 20 30 40 50", "offset",
+                                 "offset 1441", "offset -2000", "offset 1 2", "offset inf", "offset 30min" };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         err[0] = '\0';
         if (cu_stdin_parse(bad[i], &a, err, sizeof err) == 0)
@@ -193,7 +199,7 @@ static void test_sun_knob_and_toggle(void **state)
     (void)state;
     cu_sun_ctl c;
     cu_sun_ctl_init(&c, 30, 350);
-    c.accel = 0;
+    c.speed.accel = 0;
     cu_action a = { .kind = CU_ACT_TURN, .detents = 15 };
     assert_int_equal(cu_sun_ctl_apply(&c, &a), 1);
     assert_true(c.az == 5.0 && c.el == 30.0);          /* wraps past north */
@@ -262,12 +268,12 @@ static void test_sun_acceleration(void **state)
     cu_sun_ctl c;
     cu_sun_ctl_init(&c, 30, 0);
     /* Slow: 2 detents/s -> exactly one degree per detent. */
-    assert_true(cu_sun_ctl_gain(&c, 1, 500000000u) == 1.0);
+    assert_true(cu_knob_speed_gain(&c.speed, 1, 500000000u) == 1.0);
     /* 20 detents/s -> 1 + 0.25 * 16 = 5. */
-    double g = cu_sun_ctl_gain(&c, 1, 50000000u);
+    double g = cu_knob_speed_gain(&c.speed, 1, 50000000u);
     assert_true(g > 4.999 && g < 5.001);
     /* Very fast: capped. */
-    assert_true(cu_sun_ctl_gain(&c, 4, 1000000u) == 8.0);
+    assert_true(cu_knob_speed_gain(&c.speed, 4, 1000000u) == 8.0);
     /* A sequence of turns: the first is exact (no previous time), a fast follow-up is amplified, one after a
      * long pause is exact again. */
     cu_action a = { .kind = CU_ACT_TURN, .detents = 1, .t_ns = 1000000000u };

@@ -52,7 +52,7 @@ fi
 t_expect bad_set 2 "unknown key 'cloud.colour'" -- $C run $S --platform headless --no-stdin --frames 1 --set cloud.colour=1
 out=$($C run --version 2>&1); case "$out" in "cumulo "*"inputs: stdin evdev"*) t_ok run_version ;; *) t_fail run_version "$out" ;; esac
 for opt in --wait-display --platform --frames --fullscreen --mode --device --input --no-stdin --knob --step --accel --sun-elevation-range \
-           --sun-azimuth-range --size --set --data-dir; do
+           --sun-azimuth-range --clock --clock-offset --time-scale --size --set --data-dir; do
   case "$($C run --help)" in *"$opt"*) ;; *) t_fail "run --help describes $opt" "missing"; continue ;; esac
 done
 t_ok "run --help describes every option"
