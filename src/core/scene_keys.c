@@ -60,8 +60,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     {"sun", "time_utc", CU_KEY_TIME, 1, NULL, NULL, 0, 0, 0, 0, "",
      "UTC date and time (2026-06-21T12:00:00Z; +hh:mm offsets too): the sun from the solar position at latitude "
      "and longitude, following [scene] time; replaces elevation and azimuth", S(time_utc), S(has_time_utc)},
-    NUM("sun", "latitude", 1, "0", -90, 90, 0, "degrees", "with time_utc: the place, north positive", S(latitude)),
-    NUM("sun", "longitude", 1, "0", -180, 180, 0, "degrees", "with time_utc: the place, east positive",
+    NUM("sun", "latitude", 1, "0", -90, 90, 0, "degrees", "with time_utc or cumulo run --clock: the place, north positive",
+        S(latitude)),
+    NUM("sun", "longitude", 1, "0", -180, 180, 0, "degrees", "with time_utc or cumulo run --clock: the place, east positive",
         S(longitude)),
     NUM("sun", "turbidity", 1, "2.5", 1.7, 10, 0, "", "Preetham atmospheric turbidity", S(turbidity)),
     /* irradiance, sky colour <= 1e6 (Preetham's sun: ~100): with exposure <= 1e6 the tone curve stays finite (above) */
