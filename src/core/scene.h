@@ -83,6 +83,7 @@ struct cu_scene {
     cu_profile profile;
     double cloud_wind[2], cloud_noise_offset[3], cloud_lifetime, cloud_life_phase, cloud_wrap; /* every cloud's
                                                                                                  defaults */
+    double boil;              /* m/s: how fast the noise drifts through every cloud, its direction turning */
     /* [cloud] ... [ellipsoid] ... (clouds[0]'s density and boundary are the fields above) */
     int n_clouds;
     cu_cloud_spec clouds[CU_MAX_CLOUDS];
@@ -99,6 +100,7 @@ struct cu_scene {
     int noise;                /* 0/1 */
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
     int sun_map_size;         /* texels per side */
+    int lod_pixels;           /* a field's clouds smaller on screen than this get the far level of detail */
     int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
     int preset;               /* cu_preset: high (the defaults), medium, low (presets.c) */
     /* [light] */

@@ -101,6 +101,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "(0: lives forever)", S(cloud_lifetime)),
     NUM("cloud", "life_phase", 1, "0.5", 0, 1, 0, "", "where in its life the cloud is at time 0 (0.5: mature)",
         S(cloud_life_phase)),
+    /* boil <= 20 m/s: a cloud's whole noise tile (1000 m) passes in a minute at most */
+    NUM("cloud", "boil", 1, "0.3", 0, 20, 0, "m/s", "how fast the noise drifts through every cloud as time runs, its "
+        "direction turning over ten minutes, so edges evolve (0: frozen)", S(boil)),
     /* wrap: a [layer]'s extent range */
     NUM("cloud", "wrap", 1, "0", 0, 500000, 0, "m", "side of the square about the origin the cloud wraps around as it "
         "drifts, fading at its border, as a [layer]'s clouds do (0: no wrap)", S(cloud_wrap)),
@@ -119,6 +122,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         S(noise_octaves)),
     INT("quality", "sun_map_size", 1, "128", 16, 4096, 0, "texels",
         "sun maps (opacity map, or front and back depth) per side", S(sun_map_size)),
+    INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
+        "in a field of clouds, one narrower than this on screen is marched with half the segments and two noise "
+        "octaves fewer (0: never)", S(lod_pixels)),
     ENUM("quality", "integration", integration_names, "exponential",
          "segment integration: exponential (energy-conserving) or kol (Kol's trapezoids, eq. 3.20)", S(integration)),
     ENUM("quality", "preset", preset_names, "high",

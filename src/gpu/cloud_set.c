@@ -55,6 +55,7 @@ int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *nois
             cs->num_ell = c->count;
     }
     cu_generated_free(&g);
+    cs->boil = s->boil;
     for (int i = 0; i < cs->n; i++) {
         cu_cloud_slot *sl = &cs->slot[i];
         sl->rest = sl->cloud.origin;
@@ -142,14 +143,18 @@ void cu_cloud_set_at_time(cu_cloud_set *cs, double t)
         double life = cu_cloud_life(t, sl->lifetime, sl->life_phase, &cycle);
         sl->cloud.origin = p;
         sl->factor = fade * life;
-        if (cycle != sl->cycle) {
-            /* A new life looks like a new cloud: another part of the noise (its maps are remade). */
+        if (cycle != sl->cycle) { /* a new life looks like a new cloud: another part of the noise */
             sl->cycle = cycle;
-            double g = (double)cycle;
-            vec3 o = v3_add(sl->noise_rest, v3(0.6180339887 * g, 0.4142135624 * g, 0.7320508076 * g));
-            sl->cloud.noise_offset = v3(o.x - floor(o.x), o.y - floor(o.y), o.z - floor(o.z));
             sl->maps_valid = 0;
             sl->zenith_valid = 0;
         }
+        /* The boil (after Schpok et al., Kol 3.4.7): the noise drifts through the cloud at cs->boil m/s, rising a
+         * little and turning once in ten minutes, so the edges evolve while the cloud keeps its shape. */
+        double w = 2.0 * 3.14159265358979 / 600.0, ph = 6.2831853 * sl->life_phase, v = cs->boil;
+        sl->boil = v3(v / w * (sin(w * t + ph) - sin(ph)), 0.3 * v * t, -v / w * (cos(w * t + ph) - cos(ph)));
+        double g = (double)cycle, fq = sl->cloud.noise_freq;
+        vec3 o = v3_add(v3_add(sl->noise_rest, v3(0.6180339887 * g, 0.4142135624 * g, 0.7320508076 * g)),
+                        v3_scale(sl->boil, fq));
+        sl->cloud.noise_offset = v3(o.x - floor(o.x), o.y - floor(o.y), o.z - floor(o.z));
     }
 }

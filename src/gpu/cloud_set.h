@@ -16,6 +16,8 @@ typedef struct cu_cloud_slot {
     double factor;             /* density now against mature: life cycle x border fade */
     int cycle;                 /* which life it is in (a new life is a new look: its noise offset moves) */
     vec3 noise_rest;           /* noise offset of life 0 */
+    vec3 boil;                 /* m: how far the noise has drifted through the cloud (the view's noise) */
+    vec3 maps_boil;            /* ... when its maps were made (they lag the view by at most CU_BOIL_STEP) */
     GLuint inst_vbo, vao;
     cu_target sun_map, slab_map[2];
     cu_sun_maps sun;
@@ -23,6 +25,7 @@ typedef struct cu_cloud_slot {
     int has_maps;              /* the GL objects above exist */
     int map_size;              /* their texels a side (a level of detail: what the cloud covers on screen) */
     int want_size;             /* what this frame's view asks for */
+    double pixels;             /* its diameter on screen this frame */
     int maps_valid;            /* made for maps_sun and this look */
     int zenith_valid;
     vec3 maps_sun;
@@ -31,9 +34,13 @@ typedef struct cu_cloud_slot {
     uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
 } cu_cloud_slot;
 
+/* How far the noise may drift (m) before a cloud's maps are remade (at most a few clouds a frame, frame.c). */
+#define CU_BOIL_STEP 4.0
+
 typedef struct cu_cloud_set {
     cu_cloud_slot *slot;
     int n;
+    double boil;               /* m/s ([cloud] boil) */
     int num_ell;               /* the largest cloud's ellipsoid count (>= 1): what the programs are built for */
 } cu_cloud_set;
 

@@ -44,14 +44,18 @@ static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
 
 /* The level of detail of a cloud's maps in a field: about a texel per two pixels the cloud covers on screen, a power
  * of two from 16 up to quality.sun_map_size. A lone cloud always gets quality.sun_map_size. */
-static int map_size_for(const cu_renderer *r, const cu_camera *c, mat4 proj, double radius, int height)
+/* The cloud's diameter on screen, in pixels. */
+static double screen_pixels(const cu_camera *c, mat4 proj, double radius, int height)
+{
+    double d = c->ortho ? 1.0 : fmax(v3_len(c->pos), radius);
+    return radius * fabs(proj.m[5]) * height / d;
+}
+
+static int map_size_for(const cu_renderer *r, double pixels)
 {
     int most = r->scene.sun_map_size, size = 16;
     if (r->clouds.n == 1 || most <= 16)
         return most;
-    double py = fabs(proj.m[5]);
-    double d = c->ortho ? 1.0 : fmax(v3_len(c->pos), radius);
-    double pixels = radius * py * height / d; /* the cloud's diameter on screen */
     while (size < most && size < 0.5 * pixels)
         size *= 2;
     return size < most ? size : most;
@@ -59,13 +63,20 @@ static int map_size_for(const cu_renderer *r, const cu_camera *c, mat4 proj, dou
 
 /* Cloud sl's maps seen from the sun (and the zenith), remade when the sun moved or the cloud took a new look; made
  * at its mature density (ke_scale 1): the shaders scale the optical depths they read by the density now. */
-static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
+static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *boil_budget, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
     if (cloud_objects(r, sl, err))
         return 1;
-    if (sl->maps_valid && v3_dot(sl->maps_sun, ctx->sky->sun_dir) > 1.0 - 1e-12 && sl->zenith_valid)
+    int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
+    if (sl->maps_valid && v3_dot(sl->maps_sun, ctx->sky->sun_dir) > 1.0 - 1e-12 && sl->zenith_valid &&
+        (!boiled || *boil_budget <= 0))
         return 0;
+    if (sl->maps_valid && boiled) { /* only the noise drifted: a few clouds a frame, the nearest first */
+        (*boil_budget)--;
+        sl->zenith_valid = 0;
+    }
+    sl->maps_boil = sl->boil;
     double f = sl->factor;
     sl->factor = 1;
     cu_frame_bind_cloud(r, sl);
@@ -125,7 +136,8 @@ static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
             return -1;
         if (!c->visible)
             continue;
-        sl->want_size = map_size_for(r, c, proj, sl->cloud.bound_radius, r->ctx.height);
+        sl->pixels = screen_pixels(c, proj, sl->cloud.bound_radius, r->ctx.height);
+        sl->want_size = map_size_for(r, sl->pixels);
         /* perspective: the eye's distance from the cloud's centre (pos is cloud-local); orthographic: how far along
          * the view direction the centre lies */
         r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir) : v3_dot(c->pos, c->pos);
@@ -184,8 +196,9 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (visible < 0)
         return 1;
     /* Everything seen from the sun first (it draws into the maps' own targets). */
-    for (int j = 0; j < visible; j++)
-        if (cloud_maps(r, &r->clouds.slot[r->order[j]], err))
+    int boil_budget = 4;
+    for (int j = visible - 1; j >= 0; j--)
+        if (cloud_maps(r, &r->clouds.slot[r->order[j]], &boil_budget, err))
             return 1;
     for (int j = 0; j < visible; j++)
         if (cu_frame_cloud_shadow(r, r->order[j], err))
@@ -216,7 +229,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         ctx->camera = r->cams[r->order[j]];
         if (j > 0) /* each cloud's depth pre-pass and stencil of its own */
             gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-        cu_pass_cloud_draw(&r->pass_cloud, ctx);
+        int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
+        cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
     }
     /* The context keeps the nearest cloud's camera (what tests and a debugger see of "this frame"), or says that no
      * cloud was in view. */

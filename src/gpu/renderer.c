@@ -102,6 +102,7 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_energy_destroy(&r->pass_energy, gl);
     cu_pass_sun_destroy(&r->pass_sun, gl);
     cu_pass_cloud_destroy(&r->pass_cloud, gl);
+    cu_pass_cloud_destroy(&r->pass_cloud_far, gl);
     cu_pass_sky_destroy(&r->pass_sky, gl);
     cu_pass_tonemap_destroy(&r->pass_tonemap, gl);
     cu_pass_slab_destroy(&r->pass_slab, gl);
@@ -139,7 +140,9 @@ typedef struct shader_defs {
     char hull[1500], fs[1500], linear[1500];
 } shader_defs;
 
-static int build_defines(const cu_renderer *r, shader_defs *d, cu_error *err)
+/* far = 1: the far level of detail of a field's clouds, small on screen: half the segments (at least 2) and two
+ * noise octaves fewer (at least 1); the octaves left out stand in as their mean (density.glsl). */
+static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error *err)
 {
     const cu_scene *s = &r->scene;
     const cu_gpu_scene *c = &r->ctx;
@@ -151,7 +154,9 @@ static int build_defines(const cu_renderer *r, shader_defs *d, cu_error *err)
              "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n"
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n#define EXT_SHADOW %d\n"
              "#define GROUND_SHADOW %d\n",
-             c->num_ell, s->segments, s->max_intervals, s->noise ? 1 : 0, s->noise_octaves,
+             c->num_ell, far ? (s->segments + 1) / 2 > 2 ? (s->segments + 1) / 2 : (s->segments < 2 ? s->segments : 2)
+                             : s->segments,
+             s->max_intervals, s->noise ? 1 : 0, far ? (s->noise_octaves > 3 ? s->noise_octaves - 2 : 1) : s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, c->shadow == CU_SHADOW_PEEL, s->sun_intervals,
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
@@ -169,7 +174,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
 {
     cu_gpu_scene *ctx = &r->ctx;
     shader_defs d;
-    if (build_defines(r, &d, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
+    if (build_defines(r, &d, 0, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
         return 1;
     if (cu_pass_sun_create(&r->pass_sun, ctx, d.hull, d.fs, err) ||
         cu_pass_cloud_create(&r->pass_cloud, ctx, d.hull, d.fs, err) ||
@@ -178,6 +183,11 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err) ||
         (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)))
         return 1;
+    if (r->clouds.n > 1 && r->scene.lod_pixels > 0) {
+        shader_defs far;
+        if (build_defines(r, &far, 1, err) || cu_pass_cloud_create(&r->pass_cloud_far, ctx, far.hull, far.fs, err))
+            return 1;
+    }
     ctx->sun_ext = r->pass_shadow.zero_tex;
     ctx->ground_tau = r->pass_shadow.zero_tex;
     ctx->ms_gain[0] = r->pass_energy.gain[0];

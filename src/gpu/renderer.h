@@ -37,6 +37,7 @@ struct cu_renderer {
     cu_pass_energy pass_energy;
     cu_pass_sky pass_sky;
     cu_pass_cloud pass_cloud;
+    cu_pass_cloud pass_cloud_far; /* a field's clouds smaller on screen than quality.lod_pixels (none: prog 0) */
     cu_pass_tonemap pass_tonemap;
     cu_pass_shadow pass_shadow;
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
