@@ -41,7 +41,7 @@ TEST_ENV := LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe LP_NUM_THREADS=2 MES
 ALL_BINS    :=
 CHECK_TESTS :=
 
-.PHONY: all check demo clean install uninstall sweep stress help FORCE
+.PHONY: all check demo clean install uninstall sweep stress help sky-strip bench-sky FORCE
 all:
 
 # Goals that need no configuration (and so install nothing and probe nothing).
@@ -96,6 +96,18 @@ demo: $(B)/cumulo
 	@$(TEST_ENV) $(B)/cumulo render scenes/cumulus.scene -o $(B)/demo.png
 	@echo "demo: wrote $(B)/demo.png"
 
+# The README's strip of a kiosk day (scenes/kiosk_day.scene at 05:30, 09:30, 13:30 and 17:30 UTC).
+sky-strip: $(B)/cumulo
+	@i=0; for t in 7200 21600 36000 50400; do \
+	  $(TEST_ENV) $(B)/cumulo render scenes/kiosk_day.scene -o docs/sky_strip_$$i.png --size 320x192 --time $$t || exit 1; \
+	  i=$$((i + 1)); done
+
+# What a field of clouds costs (README "Performance"): tools/bench/living_sky.sh [ROUNDS] [SIZE].
+ROUNDS ?= 3
+BENCH_SIZE ?= 480x320
+bench-sky: $(B)/cumulo
+	@$(TEST_ENV) sh tools/bench/living_sky.sh $(ROUNDS) $(BENCH_SIZE)
+
 clean:
 	rm -rf $(B)
 
@@ -107,6 +119,7 @@ help:
 	@echo "make install      PREFIX=/usr/local LIBDIR DATADIR MANDIR DESTDIR; make uninstall with the same PREFIX"
 	@echo "make deps         build and run packages; deps-test, deps-vm, deps-fuzz, deps-plots: the rest"
 	@echo "make sweep        the speed/accuracy sweep (25 min); make refs: rewrite the reference images"
+	@echo "make bench-sky    what a field of clouds costs (ROUNDS=3 BENCH_SIZE=480x320); make sky-strip: README strip"
 	@echo "make platform-info  what this machine's packages allow (./configure's summary)"
 	@echo "variables: WITH_DRM|X11|WAYLAND|GPIO|OSMESA=auto|yes|no, OPT, CFLAGS, WERROR, PKG_CONFIG, NO_DEPS=1, B"
 	@echo "           SANITIZE=1 (make check under ASan + UBSan), FUZZ_SECONDS=60, FUZZ_JOBS=2, FUZZ_CC=clang"

@@ -30,6 +30,7 @@ static const char bench_help[] =
     "  --warmup N             frames rendered first and not measured (default 3)\n"
     "  --csv FILE             append one row to FILE (header written when the file is new)\n"
     "  --sun-every-frame      move the sun 0.01 deg of azimuth each frame (measures the sun-dependent passes)\n"
+    "  --time-step S          advance the scene time S seconds each frame (wind, life cycles, boil, time_utc)\n"
     "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n"
     "  --camera MODE          static (the scene's [camera], default); orbit: a new pose every frame, passed as\n"
     "                         view and projection matrices, circling the vertical through look_at; both: every\n"
@@ -76,7 +77,8 @@ static int parse_count(const char *opt, const char *v, int min, int *out)
     return 0;
 }
 
-enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY, OPT_CAMERA, OPT_ORBIT_STEP };
+enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY, OPT_CAMERA, OPT_ORBIT_STEP,
+       OPT_TIME_STEP };
 
 int cmd_bench(int argc, char **argv)
 {
@@ -89,12 +91,14 @@ int cmd_bench(int argc, char **argv)
         {"sun-every-frame", no_argument, NULL, OPT_SUN_EVERY},
         {"camera", required_argument, NULL, OPT_CAMERA},
         {"orbit-step", required_argument, NULL, OPT_ORBIT_STEP},
+        {"time-step", required_argument, NULL, OPT_TIME_STEP},
         {NULL, 0, NULL, 0},
     };
     cli_opts o = {0};
     int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC;
     double orbit_step = 1.0;
     double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
+    double time_step = 0;   /* s of scene time per frame */
     const char *csv = NULL;
     int c;
     opterr = 0;
@@ -125,6 +129,13 @@ int cmd_bench(int argc, char **argv)
             sun_every_frame = 1;
             break;
         case OPT_SUN_EVERY: sun_every_frame = 1; break; /* measure the sun pass too, as when a knob turns */
+        case OPT_TIME_STEP:
+            time_step = strtod(optarg, &end);
+            if (end == optarg || *end || !(time_step > 0) || time_step > 1e6) {
+                fprintf(stderr, "cumulo bench: --time-step expects seconds in (0, 1e6], got '%s'\n", optarg);
+                return 2;
+            }
+            break;
         case OPT_CAMERA:
             camera = !strcmp(optarg, "static") ? CAM_STATIC : !strcmp(optarg, "orbit") ? CAM_ORBIT
                      : !strcmp(optarg, "both") ? CAM_BOTH : -1;
@@ -155,7 +166,7 @@ int cmd_bench(int argc, char **argv)
     }
     if (!o.scene_path) {
         fprintf(stderr, "usage: cumulo bench SCENE [--frames N] [--warmup N] [--size WxH] [--backend B] "
-                        "[--set k=v]... [--csv FILE] [--sun-every-frame] [--sun-step DEG]\n");
+                        "[--set k=v]... [--csv FILE] [--sun-every-frame] [--sun-step DEG] [--time-step S]\n");
         return 2;
     }
     cli_session s;
@@ -182,13 +193,20 @@ int cmd_bench(int argc, char **argv)
         cli_session_close(&s);
         return 1;
     }
-    double el, az;
+    double el, az, t_scene = cu_renderer_get_time(s.r);
     cu_renderer_get_sun(s.r, &el, &az);
     float view[16], proj[16];
     for (int i = 0; i < warmup + frames; i++) {
         if (sun_every_frame) {
             cu_error e;
             cu_renderer_set_sun(s.r, el, az + sun_step * i, &e);
+        }
+        if (time_step > 0) {
+            cu_error e;
+            if (cu_renderer_set_time(s.r, t_scene + time_step * i, &e)) {
+                fprintf(stderr, "cumulo: %s\n", e.msg);
+                rc = 1;
+            }
         }
         int moving = camera != CAM_STATIC;
         if (moving && orbit_pose(s.scene, orbit_step * i, (double)s.width / s.height, view, proj))
@@ -217,6 +235,8 @@ int cmd_bench(int argc, char **argv)
     if (sun_every_frame && n < (int)sizeof opts - 40)
         n += snprintf(opts + n, sizeof opts - (size_t)n, sun_step == 0.01 ? ":sun-every-frame" : ":sun-step=%g",
                       sun_step);
+    if (time_step > 0 && n < (int)sizeof opts - 40)
+        n += snprintf(opts + n, sizeof opts - (size_t)n, ":time-step=%g", time_step);
     if (camera != CAM_STATIC && n < (int)sizeof opts - 40)
         snprintf(opts + n, sizeof opts - (size_t)n, ":camera=orbit:orbit-step=%g", orbit_step);
     const char *base = strrchr(o.scene_path, '/');

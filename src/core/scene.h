@@ -101,6 +101,7 @@ struct cu_scene {
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
     int sun_map_size;         /* texels per side */
     int lod_pixels;           /* a field's clouds smaller on screen than this get the far level of detail */
+    int cloud_shadows;        /* 0/1: clouds shade each other and the ground */
     int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
     int preset;               /* cu_preset: high (the defaults), medium, low (presets.c) */
     /* [light] */

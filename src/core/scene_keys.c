@@ -125,6 +125,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
         "in a field of clouds, one narrower than this on screen is marched with half the segments and two noise "
         "octaves fewer (0: never)", S(lod_pixels)),
+    BOOL("quality", "cloud_shadows", "on", "clouds shade each other and the ground (needs half-float targets)",
+         S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",
          "segment integration: exponential (energy-conserving) or kol (Kol's trapezoids, eq. 3.20)", S(integration)),
     ENUM("quality", "preset", preset_names, "high",

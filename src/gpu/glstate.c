@@ -26,6 +26,7 @@ void cu_glstate_enter(const cu_gl *gl, cu_glstate *s)
     }
     gl->ActiveTexture((GLenum)s->active_texture);
     gl->GetIntegerv(GL_VIEWPORT, s->viewport);
+    gl->GetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
     s->blend = gl->IsEnabled(GL_BLEND);
     s->depth_test = gl->IsEnabled(GL_DEPTH_TEST);
     s->stencil_test = gl->IsEnabled(GL_STENCIL_TEST);
@@ -94,6 +95,7 @@ void cu_glstate_leave(const cu_gl *gl, const cu_glstate *s)
     }
     gl->ActiveTexture((GLenum)s->active_texture);
     gl->Viewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    gl->Scissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
     set_cap(gl, GL_BLEND, s->blend);
     set_cap(gl, GL_DEPTH_TEST, s->depth_test);
     set_cap(gl, GL_STENCIL_TEST, s->stencil_test);

@@ -10,7 +10,7 @@
 typedef struct cu_glstate {
     GLint draw_fbo, read_fbo, program, vao, array_buffer, renderbuffer, active_texture;
     GLint tex2d[CU_GLSTATE_UNITS], tex3d[CU_GLSTATE_UNITS], sampler[CU_GLSTATE_UNITS];
-    GLint viewport[4];
+    GLint viewport[4], scissor_box[4];
     GLboolean blend, depth_test, stencil_test, cull_face, scissor_test, polygon_offset, rasterizer_discard;
     GLboolean alpha_to_coverage, sample_coverage;
     GLint blend_src_rgb, blend_dst_rgb, blend_src_a, blend_dst_a, blend_eq_rgb, blend_eq_a;

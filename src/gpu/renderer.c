@@ -218,8 +218,8 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         return cu_fail(err, "clouds: out of memory");
     ctx->num_ell = r->clouds.num_ell;
     /* Shadows of clouds on clouds and on the ground: what blendable half-float targets allow (else a log line). */
-    r->shadows = r->clouds.n > 0 && ctx->half_rt;
-    if (r->clouds.n > 0 && !ctx->half_rt)
+    r->shadows = r->clouds.n > 0 && ctx->half_rt && r->scene.cloud_shadows;
+    if (r->clouds.n > 0 && !ctx->half_rt && r->scene.cloud_shadows)
         cu_gpu_log(ctx, CU_LOG_WARN, "no half-float render targets: clouds cast no shadows on each other or the "
                                      "ground");
     if (cu_scene_sun_at(&r->scene, r->time, &r->scene.sun_elevation, &r->scene.sun_azimuth, err))
