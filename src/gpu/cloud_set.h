@@ -34,8 +34,11 @@ typedef struct cu_cloud_slot {
     uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
 } cu_cloud_slot;
 
-/* How far the noise may drift (m) before a cloud's maps are remade (at most a few clouds a frame, frame.c). */
+/* How far the noise may drift (m), and the sun creep (degrees), before a cloud's maps are remade (a few clouds a
+ * frame, frame.c); a sun that jumps farther than CU_SUN_MAP_JUMP remakes every visible cloud's maps at once. */
 #define CU_BOIL_STEP 4.0
+#define CU_SUN_MAP_STEP 0.05
+#define CU_SUN_MAP_JUMP 1.0
 
 typedef struct cu_cloud_set {
     cu_cloud_slot *slot;

@@ -5,6 +5,7 @@
 #include "error.h"
 #include "glstate.h"
 #include "scene_camera.h"
+#include "sunmap.h"
 #include "upload.h"
 #include <math.h>
 #include <stdlib.h>
@@ -22,6 +23,10 @@ void cu_frame_bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
     ctx->sun_ext = sl->has_shadow ? sl->shadow.tex[0] : r->pass_shadow.zero_tex;
     ctx->sun_size = sl->map_size > 0 ? sl->map_size : r->scene.sun_map_size;
     cu_gpu_scene_set_sun(ctx);
+    if (sl->maps_valid) { /* the cloud is lit by the sun its maps were made for (within CU_SUN_MAP_STEP of now) */
+        ctx->sun_dir = sl->maps_sun;
+        cu_sun_basis(ctx->sun_dir, &ctx->sun_right, &ctx->sun_up);
+    }
 }
 
 /* A cloud's GL objects, made the first time it is drawn: a field of thousands of clouds pays for the ones seen. */
@@ -61,22 +66,30 @@ static int map_size_for(const cu_renderer *r, double pixels)
     return size < most ? size : most;
 }
 
-/* Cloud sl's maps seen from the sun (and the zenith), remade when the sun moved or the cloud took a new look; made
- * at its mature density (ke_scale 1): the shaders scale the optical depths they read by the density now. */
-static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *boil_budget, cu_error *err)
+/* Cloud sl's maps seen from the sun (and the zenith), made at its mature density (ke_scale 1: the shaders scale the
+ * optical depths they read by the density now). Remade at once when it has none, took a new look or the sun jumped
+ * more than CU_SUN_MAP_JUMP; when the sun crept past CU_SUN_MAP_STEP or the noise boiled past CU_BOIL_STEP, only
+ * while *budget lasts (a few clouds a frame, nearest first): until then the cloud is lit by the sun its maps were
+ * made for (cu_frame_bind_cloud), consistently, at most a few hundredths of a degree off. */
+static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
     if (cloud_objects(r, sl, err))
         return 1;
+    double c = v3_dot(sl->maps_sun, ctx->sky->sun_dir);
     int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
-    if (sl->maps_valid && v3_dot(sl->maps_sun, ctx->sky->sun_dir) > 1.0 - 1e-12 && sl->zenith_valid &&
-        (!boiled || *boil_budget <= 0))
-        return 0;
-    if (sl->maps_valid && boiled) { /* only the noise drifted: a few clouds a frame, the nearest first */
-        (*boil_budget)--;
-        sl->zenith_valid = 0;
+    int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
+    int urgent = !sl->maps_valid || !sl->zenith_valid || c < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
+    if (!urgent) {
+        if ((!boiled && !crept) || *budget <= 0)
+            return 0;
+        (*budget)--;
     }
+    if (boiled)
+        sl->zenith_valid = 0;
     sl->maps_boil = sl->boil;
+    sl->maps_sun = ctx->sky->sun_dir;
+    sl->maps_valid = 1; /* what cu_frame_bind_cloud lights it with, from now */
     double f = sl->factor;
     sl->factor = 1;
     cu_frame_bind_cloud(r, sl);
@@ -87,8 +100,6 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *boil_budget, cu_er
     if (!sl->zenith_valid)
         cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
     sl->zenith_valid = 1;
-    sl->maps_valid = 1;
-    sl->maps_sun = ctx->sky->sun_dir;
     sl->factor = f;
     return 0;
 }
@@ -196,9 +207,9 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (visible < 0)
         return 1;
     /* Everything seen from the sun first (it draws into the maps' own targets). */
-    int boil_budget = 4;
+    int budget = 4;
     for (int j = visible - 1; j >= 0; j--)
-        if (cloud_maps(r, &r->clouds.slot[r->order[j]], &boil_budget, err))
+        if (cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
             return 1;
     for (int j = 0; j < visible; j++)
         if (cu_frame_cloud_shadow(r, r->order[j], err))

@@ -102,6 +102,9 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     const int size = 512;
     double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
     vec3 c = v3(snap * floor(eye.x / snap + 0.5), 0, snap * floor(eye.z / snap + 0.5));
+    /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
+    if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * 3.14159265358979 / 180.0))
+        sd = r->ground_sun;
     uint64_t sig = 1469598103934665603ull;
     sig = sig_add(sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z), c.x);
     sig = sig_add(sig_add(sig, c.z), S);
@@ -117,7 +120,9 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     if (sig == r->ground_sig)
         return 0;
     r->ground_sig = sig;
+    r->ground_sun = sd;
     cu_gpu_scene_set_sun(ctx);
+    ctx->sun_dir = sd;
     cu_pass_shadow_begin(&r->pass_shadow, ctx, &r->ground, size);
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *cl = &r->clouds.slot[j];
@@ -134,6 +139,7 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
                            v3(0, 0, 0.5 * S), size, rect);
     }
     cu_pass_shadow_end(ctx);
+    cu_gpu_scene_set_sun(ctx); /* the sky after it: the sun now */
     return 0;
 }
 

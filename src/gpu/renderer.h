@@ -43,6 +43,7 @@ struct cu_renderer {
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
     uint64_t ground_sig;
+    vec3 ground_sun;      /* the sun the ground map was made for */
 
     int sun_dirty;        /* the sun moved or the scene changed: the energy closure is measured again */
 };
