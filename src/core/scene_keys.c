@@ -123,8 +123,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "sun_map_size", 1, "128", 16, 4096, 0, "texels",
         "sun maps (opacity map, or front and back depth) per side", S(sun_map_size)),
     INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
-        "in a field of clouds, one narrower than this on screen is marched with half the segments and two noise "
-        "octaves fewer (0: never)", S(lod_pixels)),
+        "in a field of clouds, one narrower than this on screen is marched with one segment fewer and two noise "
+        "octaves (0: never)", S(lod_pixels)),
     BOOL("quality", "cloud_shadows", "on", "clouds shade each other and the ground (needs half-float targets)",
          S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",
