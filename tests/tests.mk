@@ -45,6 +45,9 @@ $(foreach t,embed embed_state shadows,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
     $(HEADLESS_LIBS) $(GLES_LIBS))))
 CHECK_TESTS += tests/gpu/test_host_scene.sh
+# A sky of many clouds: compositing, clear sky, wind, wrap-around, no pops over 10 minutes, a day without NaN (it
+# draws into float framebuffers of its own, so it links GLES like the embedding tests).
+$(eval $(call test_program,test_sky_field,tests/gpu/test_sky_field.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh tests/app/test_sky_cli.sh
