@@ -60,6 +60,10 @@ int cu_cloud_set_build(cu_cloud_set *cs, const cu_scene *s, const cu_noise *nois
         cu_cloud_slot *sl = &cs->slot[i];
         sl->rest = sl->cloud.origin;
         sl->ke_rest = sl->cloud.ke;
+        for (int e = 0; e < sl->cloud.n; e++) {
+            vec3 c = sl->cloud.c[e], r = sl->cloud.r[e];
+            sl->radius_xz = fmax(sl->radius_xz, sqrt(c.x * c.x + c.z * c.z) + fmax(r.x, r.z));
+        }
         sl->noise_rest = sl->cloud.noise_offset;
         sl->factor = 1;
     }
@@ -111,6 +115,23 @@ double cu_cloud_life(double t, double lifetime, double phase, int *cycle)
     return smooth01(f / 0.2) * smooth01((1.0 - f) / 0.2);
 }
 
+double cu_cloud_fade_density(double r, double tau0)
+{
+    if (!(r > 0))
+        return 0;
+    if (r >= 1)
+        return 1;
+    /* The density at which a chord of optical depth tau0 has the opacity r (1 - e^-tau0): -ln(1 - r (1 - e^-tau0))
+     * / tau0 (log1p and expm1 keep both ends' digits). tau0 is capped at 4: matched to a cloud's full optical depth
+     * (90 for a 1 km cumulus) the density would sit near 0.1 at 99.9 % of the opacity and then leap to 1 at the end of
+     * the ramp, and the light inside a cloud follows its density, not only its opacity (measured: a 6x-median jump in
+     * the ten-minute run of tests/gpu/test_sky_field.c). */
+    tau0 = tau0 < 4.0 ? tau0 : 4.0;
+    if (!(tau0 > 1e-6))
+        return r;
+    return -log1p(r * expm1(-tau0)) / tau0;
+}
+
 double cu_cloud_border_fade(vec3 p, double wrap, double w)
 {
     if (!(wrap > 0))
@@ -142,7 +163,7 @@ void cu_cloud_set_at_time(cu_cloud_set *cs, double t)
         int cycle;
         double life = cu_cloud_life(t, sl->lifetime, sl->life_phase, &cycle);
         sl->cloud.origin = p;
-        sl->factor = fade * life;
+        sl->factor = cu_cloud_fade_density(fade * life, sl->ke_rest * sl->cloud.bound_radius);
         if (cycle != sl->cycle) { /* a new life looks like a new cloud: another part of the noise */
             sl->cycle = cycle;
             sl->maps_valid = 0;

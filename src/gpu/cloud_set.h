@@ -26,6 +26,7 @@ typedef struct cu_cloud_slot {
     int map_size;              /* their texels a side (a level of detail: what the cloud covers on screen) */
     int want_size;             /* what this frame's view asks for */
     double pixels;             /* its diameter on screen this frame */
+    double radius_xz;          /* m: its footprint's radius about its origin seen from above (the draw order's) */
     int maps_valid;            /* made for maps_sun and this look */
     int zenith_valid;
     vec3 maps_sun;
@@ -54,9 +55,13 @@ void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl);
 void cu_cloud_slot_free_maps(cu_cloud_slot *sl, const cu_gl *gl);
 /* Positions and densities at scene time t (s). */
 void cu_cloud_set_at_time(cu_cloud_set *cs, double t);
-/* A cloud's density factor in its life: forms over the first fifth, mature, dissolves over the last fifth, smooth
- * (C1) at both ends so nothing pops; 1 for lifetime 0. */
+/* Where a cloud is in its life, 0..1 (its fade; the density follows through cu_cloud_fade_density): forms over the
+ * first fifth, mature, dissolves over the last fifth, smooth (C1) at both ends so nothing pops; 1 for lifetime 0. */
 double cu_cloud_life(double t, double lifetime, double phase, int *cycle);
-/* The density factor near the border of a wrapping layer: 0 on the border, 1 a fade width inside. */
+/* The density factor that makes a chord of optical depth min(tau0, 4) (tau0: the cloud's core extinction times its
+ * radius) as opaque as r of its full opacity: a thick cloud's density must fall a long way before it thins at all,
+ * so a fade linear in density keeps it opaque and then drops it within seconds; this one fades what is seen. */
+double cu_cloud_fade_density(double r, double tau0);
+/* The fade near the border of a wrapping layer: 0 on the border, 1 a fade width inside. */
 double cu_cloud_border_fade(vec3 pos, double wrap, double fade_width);
 #endif

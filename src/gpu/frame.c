@@ -133,7 +133,10 @@ static int check_frame(const cu_frame *f, cu_error *err)
 
 /* The clouds this frame sees (frustum-culled on each cloud's own bounds; dissolved and zero-density clouds cannot
  * change a pixel), each with its camera, sorted back to front (Kol Ch. 4: "OpenGL taking care of blending by
- * rendering them in a back-to-front order"). Returns how many. */
+ * rendering them in a back-to-front order"). The order is by the power distance of the eye to each cloud's footprint
+ * circle seen from above, d^2 - r^2: for clouds whose footprints do not overlap (a layer's never do) every line of
+ * sight meets them in that order, wherever the eye is, where the distance of the centres flips the order of a big
+ * and a small cloud side by side and makes the picture jump. Returns how many. */
 static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
 {
     int n = 0;
@@ -149,9 +152,10 @@ static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
             continue;
         sl->pixels = screen_pixels(c, proj, sl->cloud.bound_radius, r->ctx.height);
         sl->want_size = map_size_for(r, sl->pixels);
-        /* perspective: the eye's distance from the cloud's centre (pos is cloud-local); orthographic: how far along
-         * the view direction the centre lies */
-        r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir) : v3_dot(c->pos, c->pos);
+        /* perspective: the power distance above (pos is the eye, cloud-local); orthographic: how far along the view
+         * direction the centre lies */
+        r->order_key[i] = c->ortho ? v3_dot(sl->cloud.origin, c->view_dir)
+                                   : c->pos.x * c->pos.x + c->pos.z * c->pos.z - sl->radius_xz * sl->radius_xz;
         r->order[n++] = i;
     }
     /* insertion sort by decreasing distance: the order changes little from frame to frame */

@@ -253,6 +253,7 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         sl->ke_rest = sigma_geo > 0 ? sl->ke_rest * (sigma / sigma_geo) : 0;
         sl->cloud.ke = sl->ke_rest;
     }
+    cu_cloud_set_at_time(&r->clouds, r->time); /* the fades follow the optical depths just set */
     int rc = cu_upload_phase(ctx, &t, err) || cu_pass_slab_load(&r->pass_slab, ctx, r->data_dir, &ctx->ms_mode, err) ||
              create_passes(r, &t, err) || cu_upload_hulls(ctx, err);
     cu_phase_table_free(&t);
