@@ -664,6 +664,49 @@ static void test_ten_minutes_no_pop(void **st)
                  popped / median);
 }
 
+/* ---- the covered fraction seen from straight above ---- */
+
+/* A generated layer rendered from straight above (orthographic, clouds only): the fraction of the square's central
+ * part whose clouds' opacity exceeds 0.5 is the [layer] coverage within the issue's 0.05, at 0.1, 0.3 and 0.6 for
+ * humilis and mediocris. The layer is 20 km wide and the view its central 12 km: the border fade (the last
+ * 1 km before the wrap) stays out of view. The generator counts footprints shrunk by half the boundary (layer.c's
+ * margin); this checks that what the renderer shows agrees, noise and all. */
+static void test_coverage_from_above(void **st)
+{
+    (void)st;
+    enum { GW = 160, GH = 160 };
+    static float px[GW * GH * 4];
+    float view[16], proj[16];
+    top_view(view, proj, 0, 0, 20000, 6000, 6000); /* 75 m per pixel */
+    target t;
+    target_make(&t, GW, GH);
+    const char *types[2] = {"cumulus-humilis", "cumulus-mediocris"};
+    const double want[3] = {0.1, 0.3, 0.6};
+    double worst = 0;
+    for (int ty = 0; ty < 2; ty++)
+        for (int k = 0; k < 3; k++) {
+            char text[1024];
+            snprintf(text, sizeof text,
+                     "[camera]\nposition = 0 3000 3000\nlook_at = 0 1000 0\n" SUN_HIGH
+                     "[layer]\ntype = %s\nbase = 1000\nthickness = 1200\ncoverage = %g\nextent = 20000\nseed = %d\n"
+                     "lifetime = 0\n",
+                     types[ty], want[k], 5 + k);
+            use_scene(text, NULL);
+            draw(&t, 1, view, proj, px);
+            long covered = 0;
+            for (long i = 0; i < (long)GW * GH; i++) {
+                assert_true(isfinite(px[4 * i + 3]));
+                covered += px[4 * i + 3] > 0.5f;
+            }
+            double got = (double)covered / ((double)GW * GH);
+            printf("coverage from above, %s at %.1f: %.3f (%+.3f)\n", types[ty], want[k], got, got - want[k]);
+            worst = fmax(worst, fabs(got - want[k]));
+        }
+    target_free(&t);
+    printf("  worst |error| %.3f (bound 0.05)\n", worst);
+    assert_true(worst <= 0.05);
+}
+
 /* ---- 7: a kiosk day ---- */
 
 /* scenes/kiosk_day.scene from dawn (the sun 0.7 deg below the horizon) to 17 h later (the sun set an hour before),
@@ -750,6 +793,7 @@ int main(void)
         cmocka_unit_test(test_two_clouds_apart_add), cmocka_unit_test(test_overlap_depth_order),
         cmocka_unit_test(test_clear_sky_is_sky),     cmocka_unit_test(test_wind_moves_cloud),
         cmocka_unit_test(test_layer_wraps_around),   cmocka_unit_test(test_ten_minutes_no_pop),
+        cmocka_unit_test(test_coverage_from_above),
         cmocka_unit_test(test_kiosk_day_finite),
     };
     /* CUMULO_TEST_FILTER=test_wind* runs the tests whose names match (cmocka's pattern). */
