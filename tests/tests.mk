@@ -96,8 +96,9 @@ CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 CHECK_TESTS += $(wildcard tests/build/test_*.sh)
 
 # The long versions (larger images, finer sweeps, thick slabs): `make stress`.
-stress: all $(B)/test_extremes $(B)/test_ranges $(B)/test_slab
-	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes $(B)/test_ranges tests/slab/test_slab_stress.sh
+stress: all $(B)/test_extremes $(B)/test_ranges $(B)/test_slab $(B)/test_sky_field
+	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes $(B)/test_ranges tests/slab/test_slab_stress.sh \
+	  $(B)/test_sky_field
 
 # Rewrites the reference images from the current renderer (EGL); look at them before committing.
 refs: $(B)/test_render
