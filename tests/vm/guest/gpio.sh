@@ -59,9 +59,10 @@ el=$(sed -n 's/^    Sun: *elevation=\([-0-9.]*\) azimuth=\([-0-9.]*\).*/\1/p' $O
 az=$(sed -n 's/^    Sun: *elevation=\([-0-9.]*\) azimuth=\([-0-9.]*\).*/\2/p' $OUT/gpio.out)
 echo "gpio: start elevation=$el azimuth=$az"
 # expect NAME D_EL D_AZ: the sun moved by exactly these many degrees in total since the start.
-# The first frame (llvmpipe compiling its shaders, ~30 s under emulation) comes before the first input is read, so the
-# first check waits longer.
-WAIT=180
+# The first frame (llvmpipe compiling its shaders, ~30 s under emulation, and more than 180 s in the CI dry run of
+# 2026-12-02 on a slow shared host, where a 180 s wait failed the first check of both guests) comes before the first
+# input is read, so the first check waits longer.
+WAIT=360
 # Later checks: a sun change redoes the sun pass, seconds to tens of seconds under emulation (longer on a loaded host);
 # the position is still checked exactly, this only bounds how long a late line is waited for.
 LATER=${VM_INPUT_WAIT:-60}
