@@ -16,7 +16,8 @@ FUZZ_SRCS_set       := tests/fuzz/scene_check.c $(CORE_SRCS)
 FUZZ_SRCS_mie       := $(CORE_SRCS)
 FUZZ_SRCS_slab      := $(CORE_SRCS)
 FUZZ_SRCS_collector := $(CORE_SRCS)
-FUZZ_SRCS_stdin     := platform/input/stdin_input.c platform/input/input.c platform/input/sun_control.c
+FUZZ_SRCS_stdin     := platform/input/stdin_input.c platform/input/input.c platform/input/sun_control.c \
+                       platform/input/knob_speed.c platform/input/clock_control.c
 $(eval $(call flags_rule,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
 
 # $(call fuzz_target,NAME,DIR,EXTRA_CFLAGS): DIR/fuzz_NAME from tests/fuzz/fuzz_NAME.c, its objects in DIR/obj.

@@ -32,6 +32,9 @@ static void on_line(void *user, const char *line)
     case CU_ACT_TURN:
         FUZZ_CHECK(a.detents >= -10000 && a.detents <= 10000, "%d detents", a.detents);
         break;
+    case CU_ACT_SET_OFFSET: /* --clock's `offset MINUTES` */
+        FUZZ_CHECK(isfinite(a.minutes) && fabs(a.minutes) <= CU_OFFSET_MAX_MIN, "offset %.17g min", a.minutes);
+        break;
     case CU_ACT_TOGGLE: case CU_ACT_STATUS: case CU_ACT_QUIT:
         break;
     default:
