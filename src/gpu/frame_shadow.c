@@ -26,6 +26,19 @@ static void disc_rect(double u, double v, double rad, double R, int size, int re
     rect[3] = (int)fmin(size, ceil(cv + rad * k) + 1);
 }
 
+/* Whether cloud j shades cloud i: j is drawn at all, nearer the sun (along sd) and its disc seen from the sun
+ * overlaps i's. Also gives j's offset from i and how far nearer the sun it is. */
+static int casts_on(const cu_renderer *r, int i, int j, vec3 sd, vec3 *d, double *along)
+{
+    const cu_cloud_slot *si = &r->clouds.slot[i], *c = &r->clouds.slot[j];
+    if (j == i || c->cloud.n == 0 || !(c->factor * c->ke_rest > 0))
+        return 0;
+    *d = v3_sub(c->cloud.origin, si->cloud.origin);
+    *along = v3_dot(*d, sd);
+    vec3 perp = v3_sub(*d, v3_scale(sd, *along));
+    return *along > 0 && v3_len(perp) <= si->cloud.bound_radius + c->cloud.bound_radius;
+}
+
 /* Cloud i's shadow from the others: the casters are the clouds nearer the sun whose discs seen from the sun overlap
  * its own (for clouds that do not interpenetrate, every sun ray meets a caster before this cloud); their optical
  * depths along the sun add up over its sun-map square. Remade when the casters, their densities, their offsets or
@@ -45,12 +58,9 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     int casters = 0;
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *c = &r->clouds.slot[j];
-        if (j == i || c->cloud.n == 0 || !(c->factor * c->ke_rest > 0))
-            continue;
-        vec3 d = v3_sub(c->cloud.origin, sl->cloud.origin);
-        double along = v3_dot(d, sd), Rj = c->cloud.bound_radius;
-        vec3 perp = v3_sub(d, v3_scale(sd, along));
-        if (along <= 0 || v3_len(perp) > sl->cloud.bound_radius + Rj)
+        vec3 d;
+        double along;
+        if (!casts_on(r, i, j, sd, &d, &along))
             continue;
         casters++;
         sig = sig_add(sig_add(sig, j), 64.0 * c->factor);
@@ -70,12 +80,9 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size);
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *c = &r->clouds.slot[j];
-        if (j == i || c->cloud.n == 0 || !(c->factor * c->ke_rest > 0))
-            continue;
-        vec3 d = v3_sub(c->cloud.origin, sl->cloud.origin);
-        double along = v3_dot(d, sd), Rj = c->cloud.bound_radius;
-        vec3 perp = v3_sub(d, v3_scale(sd, along));
-        if (along <= 0 || v3_len(perp) > sl->cloud.bound_radius + Rj)
+        vec3 d;
+        double along, Rj = c->cloud.bound_radius;
+        if (!casts_on(r, i, j, sd, &d, &along))
             continue;
         /* texel (u, v): the point of cloud i's map plane, in j's frame, moved toward the sun before j */
         vec3 o = v3_add(v3_scale(d, -1.0), v3_scale(sd, along + Rj + 1.0));
