@@ -220,8 +220,10 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
             return 1;
     if (r->sun_dirty)
         energy_closure(r, visible);
-    /* The sky's camera: the view's directions alone (the world origin as the cloud frame). */
+    /* The sky's camera: the view's directions alone (the world origin as the cloud frame). The sun as it is now: with
+     * no cloud in view nothing above has set it since cu_renderer_set_sun moved it. */
     ctx->cloud = &r->none;
+    cu_gpu_scene_set_sun(ctx);
     if (cu_camera_build(&ctx->camera, view, proj, v3(0, 0, 0), 1.0, err) || cu_frame_ground_shadow(r, err))
         return 1;
 

@@ -399,6 +399,40 @@ static char *read_text(const char *path)
     return buf;
 }
 
+/* A clear sky whose sun cu_renderer_set_sun moves is the sky of a scene that names that sun: with no cloud in view
+ * no cloud pass sets the sun the sky shades with (it kept the scene's first sun until this was fixed; cumulo ig and a
+ * knob over a clear sky showed the old sky). And it is not the sky of the old sun. */
+static void test_clear_sky_follows_set_sun(void **st)
+{
+    (void)st;
+    enum { SW = 64, SH = 48 };
+    static float moved[SW * SH * 4], named[SW * SH * 4], before[SW * SH * 4];
+    const char *base = read_text("scenes/clear.scene");
+    const char *sets[] = {"sun.elevation=62.5", "sun.azimuth=201", NULL};
+    target t;
+    target_make(&t, SW, SH);
+    cu_error e;
+    use_scene(base, NULL);
+    draw(&t, 0, NULL, NULL, before);
+    if (cu_renderer_set_sun(tc.r, 62.5, 201, &e))
+        fail_msg("set_sun: %s", e.msg);
+    draw(&t, 0, NULL, NULL, moved);
+    use_scene(base, sets);
+    draw(&t, 0, NULL, NULL, named);
+    long differ = 0, from_before = 0;
+    for (long i = 0; i < SW * SH * 4; i++) {
+        differ += memcmp(&moved[i], &named[i], sizeof(float)) != 0;
+        from_before += fabsf(before[i] - named[i]) > 1e-3f * fabsf(named[i]);
+    }
+    printf("clear sky, sun moved: %ld of %d values differ from the named sun's; %ld differ between the suns\n", differ,
+           SW * SH * 4, from_before);
+    if (differ)
+        save_images("sky_field-clear-set-sun", moved, named, SW, SH);
+    assert_int_equal(differ, 0);
+    assert_true(from_before > SW * SH);
+    target_free(&t);
+}
+
 /* scenes/clear.scene (no ellipsoid, no layer) is bit for bit the same sky as with a cloud behind the camera (frustum
  * culled) and as with a cloud in view of density 0; it has no NaN and is not black. A renderer that drew something
  * for a culled or empty cloud (a hull's depth, a cleared pixel, another tone), or treated a clear sky as a special
@@ -792,7 +826,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_two_clouds_apart_add), cmocka_unit_test(test_overlap_depth_order),
-        cmocka_unit_test(test_clear_sky_is_sky),     cmocka_unit_test(test_wind_moves_cloud),
+        cmocka_unit_test(test_clear_sky_is_sky), cmocka_unit_test(test_clear_sky_follows_set_sun),     cmocka_unit_test(test_wind_moves_cloud),
         cmocka_unit_test(test_layer_wraps_around),   cmocka_unit_test(test_ten_minutes_no_pop),
         cmocka_unit_test(test_coverage_from_above),
         cmocka_unit_test(test_kiosk_day_finite),
