@@ -54,6 +54,9 @@ int  cu_scene_set(cu_scene *s, const char *assignment, cu_error *err);
 void cu_scene_output_size(const cu_scene *s, int *width, int *height);
 /* The scene's [camera]: position and look_at in world metres, vertical field of view in degrees. */
 void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], double *fov_deg);
+/* The scene's database origin ([scene] origin_latitude, origin_longitude in degrees, origin_altitude in metres above
+ * mean sea level): where world (0, 0, 0) is on Earth, for hosts that send geodetic positions (cumulo ig). */
+void cu_scene_origin(const cu_scene *s, double *latitude_deg, double *longitude_deg, double *altitude_m);
 /* The scene's [camera] as a host would pass it in cu_frame: view (world -> eye) and a perspective projection for
  * the aspect ratio width / height with the given clip planes (column-major). Passing these gives the same image
  * as passing NULL. Fails for a non-positive or non-finite aspect or planes (0 < znear < zfar). */
@@ -82,6 +85,11 @@ int  cu_renderer_set_scene(cu_renderer *r, const cu_scene *s, cu_error *err);
  * only when it starts a new life. Fails for a non-finite time or |t| > 1e9 s. */
 int  cu_renderer_set_time(cu_renderer *r, double seconds, cu_error *err);
 double cu_renderer_get_time(const cu_renderer *r);
+/* The centre (world x, z in metres) of the squares that wrapping clouds wrap around: a [layer]'s extent and a
+ * [cloud] wrap are about (0, 0) until this moves them. A layer is a torus, so a square about a travelling viewer
+ * shows the same clouds where they overlap: an image generator keeps it on its eyepoint and flies through an endless
+ * layer. Kept across cu_renderer_set_scene; nothing is rebuilt. Fails for non-finite or |x|, |z| > 1e8 m. */
+int  cu_renderer_set_wrap_center(cu_renderer *r, double x, double z, cu_error *err);
 /* Moves the sun (degrees); only the sun-dependent passes are redone on the next frame. */
 int  cu_renderer_set_sun(cu_renderer *r, double elevation_deg, double azimuth_deg, cu_error *err);
 void cu_renderer_get_sun(const cu_renderer *r, double *elevation_deg, double *azimuth_deg);

@@ -55,6 +55,7 @@ struct cu_scene {
     unsigned char explicit_key[96]; /* by cu_scene_keys index: keys the file or --set gave (a preset leaves them) */
     /* [scene] */
     double time;              /* s: wind, life cycles and (with [sun] time_utc) the sun follow it */
+    double origin_lat, origin_lon, origin_alt; /* degrees, degrees, m: where world (0, 0, 0) is on Earth (WGS84) */
     /* [output] */
     int width, height;
     double exposure;          /* multiplies radiance (kcd/m^2) before tone mapping */

@@ -1,4 +1,4 @@
-/* src/core/scene_camera.c: the scene's [camera] as view and projection matrices, the form a host passes in
+/* src/core/scene_camera.c: the scene's [camera] (and where its world is on Earth) as view and projection matrices, the form a host passes in
  * cu_frame (the renderer builds its frame camera from the same matrices, src/gpu/camera.c). */
 #include "scene_camera.h"
 #include "error.h"
@@ -27,4 +27,11 @@ void cu_scene_camera(const cu_scene *s, double position[3], double look_at[3], d
         look_at[i] = s->cam_look[i];
     }
     *fov_deg = s->cam_fov;
+}
+
+void cu_scene_origin(const cu_scene *s, double *latitude_deg, double *longitude_deg, double *altitude_m)
+{
+    *latitude_deg = s->origin_lat;
+    *longitude_deg = s->origin_lon;
+    *altitude_m = s->origin_alt;
 }

@@ -36,6 +36,14 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     /* time: |t| <= 1e9 s (32 years); positions move by wind x time and wrap, in double on the CPU */
     NUM("scene", "time", 1, "0", -1e9, 1e9, 0, "s", "scene time: wind, life cycles and the sun (with time_utc) follow it",
         S(time)),
+    /* The database origin of `cumulo ig`: a host's geodetic positions become world metres about it (WGS84, exact
+     * ECEF -> east-north-up, platform/sim/geodetic.c). Heights up to 1e5 m: above every cloud and aircraft. */
+    NUM("scene", "origin_latitude", 1, "0", -90, 90, 0, "degrees",
+        "where the world's origin is: WGS84 latitude, north positive (cumulo ig's database origin)", S(origin_lat)),
+    NUM("scene", "origin_longitude", 1, "0", -180, 180, 0, "degrees",
+        "... and longitude, east positive", S(origin_lon)),
+    NUM("scene", "origin_altitude", 1, "0", -1e4, 1e5, 0, "m",
+        "... and height above mean sea level (world y = 0 there)", S(origin_alt)),
     /* size <= 16384: GLES limits (GL_MAX_RENDERBUFFER_SIZE, checked at render time); the maths is per pixel */
     INT("output", "size", 2, "640 480", 1, 16384, 0, "pixels", "image width and height", S(width)),
     /* exposure <= 1e6: the tone curve squares exposure x radiance (tonemap.frag: x (2.51 x + 0.03)), which overflows
@@ -217,7 +225,7 @@ const cu_scene_key cu_ellipsoid_keys[CU_ELLIPSOID_KEY_COUNT] = {
 #undef L
 
 const cu_scene_section cu_scene_sections[CU_SCENE_SECTION_COUNT] = {
-    {"scene", 0, 0, "the scene's time", NULL, 0},
+    {"scene", 0, 0, "the scene's time and where it is on Earth", NULL, 0},
     {"output", 0, 0, "the image", NULL, 0},
     {"camera", 1, 0, "a pinhole camera", NULL, 0},
     {"sun", 1, 0, "the sun and the Preetham atmosphere", NULL, 0},

@@ -153,12 +153,15 @@ void cu_cloud_set_at_time(cu_cloud_set *cs, double t)
         vec3 p = v3_add(sl->rest, v3_scale(sl->wind, t));
         double fade = 1;
         if (sl->wrap > 0) {
-            p.x = wrap_coord(p.x, sl->wrap);
-            p.z = wrap_coord(p.z, sl->wrap);
+            /* about the set's centre: the layer is a torus, so any square of its side shows all of it once */
+            p.x = wrap_coord(p.x - cs->wrap_cx, sl->wrap);
+            p.z = wrap_coord(p.z - cs->wrap_cz, sl->wrap);
             /* Kol fades clouds by the distance to the sky dome; a wrapping layer fades them out before its border
              * and in after it, over at least the cloud's size, so a cloud crossing it never pops. */
             double w = fmax(2.0 * sl->cloud.bound_radius, 0.05 * sl->wrap);
             fade = cu_cloud_border_fade(p, sl->wrap, fmin(w, 0.25 * sl->wrap));
+            p.x += cs->wrap_cx;
+            p.z += cs->wrap_cz;
         }
         int cycle;
         double life = cu_cloud_life(t, sl->lifetime, sl->life_phase, &cycle);

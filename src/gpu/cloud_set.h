@@ -45,6 +45,7 @@ typedef struct cu_cloud_set {
     cu_cloud_slot *slot;
     int n;
     double boil;               /* m/s ([cloud] boil) */
+    double wrap_cx, wrap_cz;   /* m: the centre of the squares wrapping clouds wrap around (the viewer's, for an IG) */
     int num_ell;               /* the largest cloud's ellipsoid count (>= 1): what the programs are built for */
 } cu_cloud_set;
 

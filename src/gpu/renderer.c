@@ -210,6 +210,8 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     cu_upload_noise(ctx, &r->noise);
     if (cu_cloud_set_build(&r->clouds, &r->scene, &r->noise, err))
         return 1;
+    r->clouds.wrap_cx = r->wrap_cx;
+    r->clouds.wrap_cz = r->wrap_cz;
     r->time = r->scene.time;
     size_t n = (size_t)(r->clouds.n > 0 ? r->clouds.n : 1);
     r->order = malloc(sizeof *r->order * n);
@@ -348,5 +350,15 @@ int cu_renderer_set_sun_utc(cu_renderer *r, const char *time_utc, double latitud
 double cu_renderer_get_time(const cu_renderer *r)
 {
     return r->time;
+}
+
+int cu_renderer_set_wrap_center(cu_renderer *r, double x, double z, cu_error *err)
+{
+    if (!isfinite(x) || !isfinite(z) || fabs(x) > 1e8 || fabs(z) > 1e8)
+        return cu_fail(err, "wrap center: must be finite and within 1e8 m, got %g %g", x, z);
+    r->wrap_cx = r->clouds.wrap_cx = x;
+    r->wrap_cz = r->clouds.wrap_cz = z;
+    cu_cloud_set_at_time(&r->clouds, r->time);
+    return 0;
 }
 

@@ -27,6 +27,7 @@ struct cu_renderer {
     cu_cloud none;        /* what ctx->cloud points at between clouds: empty */
     cu_sky sky;
     double time;          /* the scene time the clouds are at (s) */
+    double wrap_cx, wrap_cz; /* cu_renderer_set_wrap_center's, kept across scenes */
     int *order;           /* this frame's visible clouds, back to front (clouds.n) */
     double *order_key;
     cu_camera *cams;      /* each cloud's camera this frame */
