@@ -85,11 +85,13 @@ static int check(cu_cigi_ig *ig, const pkt *k, const char *field, double v, doub
             return r_;                                                                                                \
     } while (0)
 
-/* Degrees into [0, 360). */
+/* Degrees into [0, 360): a tiny negative angle plus 360 rounds to 360 itself, which is 0. */
 static double wrap360(double deg)
 {
     double d = fmod(deg, 360.0);
-    return d < 0 ? d + 360.0 : d;
+    if (d < 0)
+        d += 360.0;
+    return d < 360.0 && d != 0 ? d : 0.0; /* and -0 is 0 */
 }
 
 /* Entity Control (id 2): bytes 2-3 entity id, 4 entity state (bits 0-1) and attach state (bit 2), 12/16/20 roll,

@@ -337,6 +337,12 @@ static void test_layers(void **state)
         assert_int_equal(st.layers[i].enabled, i != 1);
         assert_true(st.layers[i].wind_from_deg == 270);
     }
+    /* from -1e-30 degrees: fmod keeps the sign, and 360 - 1e-30 rounds to 360, outside [0, 360) (found by fuzz_cigi) */
+    open_dg(&d, 0, 2);
+    ADD(&d, atmosphere, {.wind_speed = 1, .wind_dir = -1e-30f});
+    ADD(&d, weather, {.layer_id = 1, .wind_dir = -360});
+    assert_int_equal(receive(&ig, &d, &st), 3);
+    assert_true(st.wind_from_deg == 0 && st.layers[0].wind_from_deg == 0);
 }
 
 /* Size field 0 or 1 would loop for ever: the datagram ends there, the next one is read. */
