@@ -38,9 +38,9 @@ $(foreach t,$(FUZZ_TARGETS),$(eval $(call fuzz_target,$(t),$(B)/fuzz/pending,-DF
 -include $(shell find $(B)/fuzz -name '*.d' 2>/dev/null)
 
 # The CIGI seeds are datagrams the host-side encoders write: `make cigi-seeds` rewrites tests/fuzz/seeds/cigi/.
-$(B)/cigi_seeds: tests/sim/cigi_seeds.c tests/sim/cigi_encode.c
+$(B)/cigi_seeds: tests/sim/cigi_seeds.c tests/sim/cigi_encode.c platform/sim/cigi.c
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS_BASE) -Itests/sim -o $@ $^
+	$(CC) $(CFLAGS_BASE) -Itests/sim -Iplatform/sim -o $@ $^ -lm
 cigi-seeds: $(B)/cigi_seeds
 	$(B)/cigi_seeds tests/fuzz/seeds/cigi
 

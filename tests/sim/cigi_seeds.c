@@ -1,5 +1,7 @@
 /* tests/sim/cigi_seeds.c: writes CIGI host datagrams made by the host-side encoders into a folder: the fuzz seeds of
- * tests/fuzz/seeds/cigi/ (`make cigi-seeds`) and the datagram tests/sim/cigi_tshark_check.sh shows tshark. */
+ * tests/fuzz/seeds/cigi/ (`make cigi-seeds`); `--sof FILE` writes the IG's Start of Frame after one of them, for
+ * tests/sim/cigi_tshark_check.sh to show tshark. */
+#include "cigi.h"
 #include "cigi_encode.h"
 #include <stdio.h>
 #include <string.h>
@@ -59,10 +61,25 @@ static int save(const char *dir, const char *name, const buf *o)
     return 0;
 }
 
+/* The Start of Frame an IG answers every_packet with: IG frame 4242, timestamp 777 (10 us ticks), status 0. */
+static int start_of_frame(const char *path)
+{
+    buf o = {0};
+    every_packet(&o, 0, 1234);
+    cu_cigi_ig ig;
+    cu_cigi_ig_init(&ig, 0, 0);
+    cu_sim_state st = {0};
+    cu_cigi_ig_receive(&ig, o.b, o.n, &st);
+    o.n = cu_cigi_start_of_frame(&ig, 4242, 777, 0, o.b, sizeof o.b);
+    return save(".", path, &o);
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 3 && !strcmp(argv[1], "--sof"))
+        return start_of_frame(argv[2]);
     if (argc != 2) {
-        fprintf(stderr, "usage: cigi_seeds DIR\n");
+        fprintf(stderr, "usage: cigi_seeds DIR | cigi_seeds --sof FILE\n");
         return 2;
     }
     int bad = 0;
