@@ -62,7 +62,9 @@ check() {
   name=$1 f=$2 port=$3 want=$4
   got=$(fields "$f" "$port" $(for kv in $want; do echo "${kv%%=*}"; done))
   bad=""
-  for kv in $want; do echo "$got" | grep -qxF "$kv" || bad="$bad $kv (got $(echo "$got" | grep "^${kv%%=*}=" | head -1))"; done
+  for kv in $want; do
+    echo "$got" | grep -qxF "$kv" || bad="$bad $kv (got $(echo "$got" | grep "^${kv%%=*}=" | head -1))"
+  done
   [ -z "$bad" ] && t_ok "$name" || t_fail "$name" "$bad"
 }
 check "tshark decodes a big-endian host datagram of every packet" every_packet_be 8004 "$HOST cigi.byte_swap=0x8000"

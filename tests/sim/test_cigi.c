@@ -1,6 +1,6 @@
 /* tests/sim/test_cigi.c: the CIGI 3.3 decoder against the host-side encoders in both byte orders (every field into
- * cu_sim_state, enable bits, views, groups, layers), hostile datagrams (each counted, the state untouched, later packets
- * still read) and Start of Frame byte by byte against the ICD's layout. */
+ * cu_sim_state, enable bits, views, groups, layers), hostile datagrams (each counted, the state untouched, later
+ * packets still read) and Start of Frame byte by byte against the ICD's layout. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
