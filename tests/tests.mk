@@ -82,6 +82,12 @@ $(eval $(call test_program,test_input_set,tests/platform/test_input_set.c $(filt
 CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_run_clock.sh tests/platform/test_gpio_sim.sh \
                tests/platform/test_soak.sh
 
+# sim: the host simulation protocols' decoders against host-side encoders, hostile datagrams included.
+$(eval $(call test_program,test_cigi,tests/sim/test_cigi.c tests/sim/cigi_encode.c platform/sim/cigi.c,-Itests/sim,))
+# Wireshark's CIGI dissector reads our datagrams and Start of Frame as meant (skips without tshark).
+CHECK_TESTS += tests/sim/cigi_tshark_check.sh
+check: $(B)/cigi_seeds
+
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))
 CHECK_TESTS += tests/mie/test_mie_cli.sh

@@ -6,7 +6,7 @@
 
 # All #include "x.h" edges between our files, as "from to" lines of paths (resolved in the including file's folder,
 # then in the include folders the build uses).
-DIRS="include src/core src/gpu app platform/display platform/input tools/pathtrace tools/mie tools/slab tools/sweep"
+DIRS="include src/core src/gpu app platform/display platform/input platform/sim tools/pathtrace tools/mie tools/slab tools/sweep"
 edges=$(for f in $(find include src app platform tools -name '*.[ch]' | sort); do
   sed -n 's/^#include "\([^"]*\)".*/\1/p' "$f" | while read -r h; do
     for d in "$(dirname "$f")" $DIRS; do
