@@ -1,4 +1,5 @@
-# platform/platform.mk: the display back ends (platform/display/) and the inputs (platform/input/) the programs use.
+# platform/platform.mk: the display back ends (platform/display/), the inputs (platform/input/) and the host
+# simulations' protocols (platform/sim/) the programs use.
 # Which optional back ends are built comes from ./configure ($(B)/config.mk, $(B)/gen/config.h).
 DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
                 platform/display/headless_fbo.c platform/display/drm_mode.c \
@@ -12,11 +13,13 @@ INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/i
                 platform/input/stdin_input.c platform/input/quadrature.c platform/input/knob_speed.c \
                 platform/input/sun_control.c platform/input/clock_control.c \
                 $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
-PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS)
+# The host simulations' protocols, decoded into platform/sim/sim_state.h: pure functions of datagrams, no sockets.
+SIM_SRCS     := platform/sim/fgfs.c
+PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS) $(SIM_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
 PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread
 
-PLATFORM_CPPFLAGS := -Iplatform/display -Iplatform/input -I$(B)/gen
+PLATFORM_CPPFLAGS := -Iplatform/display -Iplatform/input -Iplatform/sim -I$(B)/gen
 CFLAGS_PLATFORM := $(CFLAGS_BASE) $(PLATFORM_CPPFLAGS)
 $(eval $(call flags_rule,platform,$(CC) $(CFLAGS_PLATFORM) $(EGL_CFLAGS) $(OSMESA_CFLAGS) $(DRM_CFLAGS) \
   $(X11_CFLAGS) $(WAYLAND_CFLAGS) $(GPIO_CFLAGS)))

@@ -82,6 +82,9 @@ $(eval $(call test_program,test_input_set,tests/platform/test_input_set.c $(filt
 CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_run_clock.sh tests/platform/test_gpio_sim.sh \
                tests/platform/test_soak.sh
 
+# sim: the host simulations' protocols on recorded streams (tests/sim/data/) and hostile datagrams.
+$(eval $(call test_program,test_fgfs,tests/sim/test_fgfs.c platform/sim/fgfs.c,,))
+
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))
 CHECK_TESTS += tests/mie/test_mie_cli.sh
