@@ -14,7 +14,7 @@ INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/i
                 platform/input/sun_control.c platform/input/clock_control.c \
                 $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
 # The host simulations' protocols, decoded into platform/sim/sim_state.h: pure functions of datagrams, no sockets.
-SIM_SRCS     := platform/sim/fgfs.c
+SIM_SRCS     := platform/sim/fgfs.c platform/sim/xplane.c
 PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS) $(SIM_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
 PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread

@@ -84,6 +84,7 @@ CHECK_TESTS += tests/platform/test_run.sh tests/platform/test_run_clock.sh tests
 
 # sim: the host simulations' protocols on recorded streams (tests/sim/data/) and hostile datagrams.
 $(eval $(call test_program,test_fgfs,tests/sim/test_fgfs.c platform/sim/fgfs.c,,))
+$(eval $(call test_program,test_xplane,tests/sim/test_xplane.c platform/sim/xplane.c,,))
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))
