@@ -1,7 +1,8 @@
 # mk/install.mk: `make install` and `make uninstall` (PREFIX, LIBDIR, DATADIR, MANDIR, DESTDIR), laid out as a Debian
 # packager expects: the programs a user runs (not the developer tools), libcumulo.so with its soname and the static
 # library, the public header, cumulo.pc, the tables, example scenes, man pages, the example host program's source
-# (as documentation) and the kiosk's systemd unit.
+# (as documentation), the kiosk's systemd unit and FlightGear's protocol file for `cumulo ig` (users copy it into
+# $FG_ROOT/Protocol/).
 BINDIR     = $(CONFIG_PREFIX)/bin
 INCLUDEDIR = $(CONFIG_PREFIX)/include
 PKGDATADIR = $(CONFIG_DATADIR)/cumulo
@@ -22,7 +23,8 @@ ALL_BINS += $(B)/cumulo-kiosk.service
 install: all
 	$(INSTALL) -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(CONFIG_LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR) \
 	    $(DESTDIR)$(PKGDATADIR)/data $(DESTDIR)$(PKGDATADIR)/scenes $(DESTDIR)$(CONFIG_MANDIR)/man1 \
-	    $(DESTDIR)$(CONFIG_MANDIR)/man5 $(DESTDIR)$(UNITDIR) $(DESTDIR)$(DOCDIR)/examples
+	    $(DESTDIR)$(CONFIG_MANDIR)/man5 $(DESTDIR)$(UNITDIR) $(DESTDIR)$(DOCDIR)/examples \
+	    $(DESTDIR)$(PKGDATADIR)/flightgear
 	$(INSTALL) -m 755 $(INSTALL_PROGRAMS) $(DESTDIR)$(BINDIR)/
 	$(INSTALL) -m 644 $(B)/libcumulo.so.$(VERSION) $(DESTDIR)$(CONFIG_LIBDIR)/
 	ln -sf libcumulo.so.$(VERSION) $(DESTDIR)$(CONFIG_LIBDIR)/$(LIB_SONAME)
@@ -32,6 +34,7 @@ install: all
 	$(INSTALL) -m 644 include/cumulo.h $(DESTDIR)$(INCLUDEDIR)/
 	$(INSTALL) -m 644 $(INSTALL_DATA) $(DESTDIR)$(PKGDATADIR)/data/
 	$(INSTALL) -m 644 $(INSTALL_SCENES) $(DESTDIR)$(PKGDATADIR)/scenes/
+	$(INSTALL) -m 644 data/flightgear/cumulo.xml $(DESTDIR)$(PKGDATADIR)/flightgear/
 	$(INSTALL) -m 644 docs/man/cumulo.1 $(DESTDIR)$(CONFIG_MANDIR)/man1/
 	$(INSTALL) -m 644 docs/man/cumulo.scene.5 $(DESTDIR)$(CONFIG_MANDIR)/man5/
 	$(INSTALL) -m 644 $(B)/cumulo-kiosk.service $(DESTDIR)$(UNITDIR)/

@@ -1,5 +1,5 @@
-# platform/platform.mk: the display back ends (platform/display/), the inputs (platform/input/) and the host simulation
-# protocols (platform/sim/) the programs use.
+# platform/platform.mk: the display back ends (platform/display/), the inputs (platform/input/) and the host
+# simulations' protocols (platform/sim/) the programs use.
 # Which optional back ends are built comes from ./configure ($(B)/config.mk, $(B)/gen/config.h).
 DISPLAY_SRCS := platform/display/display.c platform/display/egl_common.c platform/display/egl_surfaceless.c \
                 platform/display/headless_fbo.c platform/display/drm_mode.c \
@@ -13,8 +13,8 @@ INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/i
                 platform/input/stdin_input.c platform/input/quadrature.c platform/input/knob_speed.c \
                 platform/input/sun_control.c platform/input/clock_control.c \
                 $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
-# The host simulation protocols (platform/sim/): pure decoders into cu_sim_state, no I/O.
-SIM_SRCS     := platform/sim/cigi.c
+# The host simulations' protocols (platform/sim/): pure decoders of datagrams into sim_state.h, no I/O.
+SIM_SRCS     := platform/sim/cigi.c platform/sim/fgfs.c platform/sim/xplane.c
 PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS) $(SIM_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
 PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread

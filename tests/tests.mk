@@ -87,6 +87,9 @@ $(eval $(call test_program,test_cigi,tests/sim/test_cigi.c tests/sim/cigi_encode
 # Wireshark's CIGI dissector reads our datagrams and Start of Frame as meant (skips without tshark).
 CHECK_TESTS += tests/sim/cigi_tshark_check.sh
 check: $(B)/cigi_seeds
+# ... FlightGear's and X-Plane's on recorded streams (tests/sim/data/) and hostile datagrams.
+$(eval $(call test_program,test_fgfs,tests/sim/test_fgfs.c platform/sim/fgfs.c,,))
+$(eval $(call test_program,test_xplane,tests/sim/test_xplane.c platform/sim/xplane.c,,))
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))

@@ -81,7 +81,7 @@ for f in usr/bin/cumulo usr/bin/cumulo-pt usr/lib/libcumulo.so.0 usr/lib/libcumu
          usr/lib/pkgconfig/cumulo.pc usr/include/cumulo.h usr/share/cumulo/data/mie_cloud.tbl \
          usr/share/cumulo/data/slab_fit_bouthors.txt usr/share/cumulo/data/slab_collector.txt \
          usr/share/cumulo/scenes/cumulus.scene usr/share/man/man1/cumulo.1 usr/share/man/man5/cumulo.scene.5 \
-         lib/systemd/system/cumulo-kiosk.service; do
+         usr/share/cumulo/flightgear/cumulo.xml lib/systemd/system/cumulo-kiosk.service; do
   [ -e "$D/$f" ] || miss="$miss $f"
 done
 [ -z "$miss" ] && t_ok "installed files present" || t_fail "installed files present" "missing:$miss"

@@ -5,12 +5,12 @@
 FUZZ_CC      ?= clang
 FUZZ_SECONDS ?= 60
 FUZZ_JOBS    ?= 2
-FUZZ_TARGETS := scene set mie slab collector stdin cigi
+FUZZ_TARGETS := scene set mie slab collector stdin cigi fgxp
 FUZZ_SAN     := -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 FUZZ_CFLAGS  := -std=c99 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror -O1 -g $(FUZZ_SAN) \
                 -Iinclude -Isrc/core -Iplatform/input -Iplatform/sim -Itests/fuzz -I$(B)/gen/lib $(LIB_CFLAGS)
-# What each target links besides its own file: the core library (its parsers, as the programs have them) or the
-# stdin command parser with the input types it fills, or a host simulation protocol's decoder.
+# What each target links besides its own file: the core library (its parsers, as the programs have them), the
+# stdin command parser with the input types it fills, or the host simulations' decoders.
 FUZZ_SRCS_scene     := tests/fuzz/scene_check.c $(CORE_SRCS)
 FUZZ_SRCS_set       := tests/fuzz/scene_check.c $(CORE_SRCS)
 FUZZ_SRCS_mie       := $(CORE_SRCS)
@@ -19,6 +19,7 @@ FUZZ_SRCS_collector := $(CORE_SRCS)
 FUZZ_SRCS_stdin     := platform/input/stdin_input.c platform/input/input.c platform/input/sun_control.c \
                        platform/input/knob_speed.c platform/input/clock_control.c
 FUZZ_SRCS_cigi      := platform/sim/cigi.c
+FUZZ_SRCS_fgxp      := platform/sim/fgfs.c platform/sim/xplane.c
 $(eval $(call flags_rule,fuzz,$(FUZZ_CC) $(FUZZ_CFLAGS)))
 
 # $(call fuzz_target,NAME,DIR,EXTRA_CFLAGS): DIR/fuzz_NAME from tests/fuzz/fuzz_NAME.c, its objects in DIR/obj.
