@@ -6,4 +6,5 @@ int cmd_bench(int argc, char **argv);
 int cmd_run(int argc, char **argv);
 int cmd_expand(int argc, char **argv);
 int cmd_sun(int argc, char **argv);
+int cmd_ig(int argc, char **argv);
 #endif

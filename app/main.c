@@ -13,6 +13,7 @@ static void usage(FILE *f)
             "  run    SCENE --platform P ...     the interactive / kiosk loop: a display, inputs that move the sun\n"
             "  sun    --time-utc T ...           the sun's elevation and azimuth at a UTC time and a place\n"
             "  expand SCENE [-o OUT.scene]       the scene with its [layer]s written out as [cloud] sections\n"
+            "  ig     SCENE [--input SPEC] ...   image generator: a simulator (CIGI 3.3, FlightGear, X-Plane) drives it\n"
             "  --version                         version, display back ends and inputs of this build\n"
             "Exit status: 0 success, 1 runtime failure (bad scene file, GL or I/O error), 2 usage error.\n");
 }
@@ -42,6 +43,8 @@ int main(int argc, char **argv)
         return cmd_expand(argc - 1, argv + 1);
     if (strcmp(cmd, "sun") == 0)
         return cmd_sun(argc - 1, argv + 1);
+    if (strcmp(cmd, "ig") == 0)
+        return cmd_ig(argc - 1, argv + 1);
     fprintf(stderr, "cumulo: unknown command '%s' (cumulo --help lists them)\n", cmd);
     return 2;
 }

@@ -9,8 +9,10 @@ DEB_BUILD := gcc make pkg-config libc6-dev libegl-dev libgles-dev libegl-mesa0 l
              libosmesa6-dev libgbm-dev libdrm-dev libgpiod-dev libx11-dev libwayland-dev libwayland-bin \
              wayland-protocols
 # Tests (`make deps-test`): cmocka for the unit tests, GSL for tools/slab's model fitter and its tests, a real X
-# server (Xvfb) and Wayland compositor (weston) for the windowed back ends' tests (skipped without them).
-DEB_TEST  := libcmocka-dev libgsl-dev xvfb weston
+# server (Xvfb) and Wayland compositor (weston) for the windowed back ends' tests (skipped without them), and tshark:
+# Wireshark's CIGI dissector decodes what `cumulo ig` and its test host exchange, a decoder nobody here wrote (the
+# CIGI tests skip that check without it; the package's debconf question is answered no by the noninteractive install).
+DEB_TEST  := libcmocka-dev libgsl-dev xvfb weston tshark
 # `make vmcheck` (`make deps-vm`): qemu boots a kernel built from linux-source-6.1 (flex, bison, bc for kconfig,
 # libelf-dev for objtool, xz-utils to unpack) to test DRM, GPIO and evdev against real drivers.
 DEB_VM    := qemu-system-x86 linux-source-6.1 flex bison bc libelf-dev xz-utils
@@ -46,5 +48,6 @@ DEPS_ENSURE_BUILD = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_BUILD) 2>/dev/
 DEPS_ENSURE_FUZZ  = $(if $(NO_DEPS),:,command -v $(FUZZ_CC) >/dev/null && echo 'int LLVMFuzzerTestOneInput(const char *d, \
                     long n) { return d && n < 0; }' | $(FUZZ_CC) -fsanitize=fuzzer -x c - -o /dev/null 2>/dev/null \
                     || sh scripts/install-deps.sh $(DEB_FUZZ))
-DEPS_ENSURE_TEST  = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_TEST) 2>/dev/null && command -v Xvfb >/dev/null \
+DEPS_ENSURE_TEST  = $(if $(NO_DEPS),:,$(PKG_CONFIG) --exists $(PC_TEST) 2>/dev/null && command -v Xvfb >/dev/null && \
+                    command -v tshark >/dev/null \
                     || sh scripts/install-deps.sh $(DEB_TEST))

@@ -13,8 +13,10 @@ INPUT_SRCS   := platform/input/input.c platform/input/input_backend.c platform/i
                 platform/input/stdin_input.c platform/input/quadrature.c platform/input/knob_speed.c \
                 platform/input/sun_control.c platform/input/clock_control.c \
                 $(if $(filter 1,$(HAVE_GPIO)),$(GPIO_SRCS))
-# The host simulations' protocols (platform/sim/): pure decoders of datagrams into sim_state.h, no I/O.
-SIM_SRCS     := platform/sim/cigi.c platform/sim/fgfs.c platform/sim/xplane.c
+# The simulator links of `cumulo ig` (platform/sim/): the protocols' decoders are pure functions of datagrams into
+# sim_state.h; geodetic.c turns the state into a camera; udp.c and sim_link.c do the I/O.
+SIM_SRCS     := platform/sim/cigi.c platform/sim/fgfs.c platform/sim/xplane.c platform/sim/geodetic.c \
+                platform/sim/udp.c platform/sim/sim_link.c
 PLATFORM_SRCS := $(DISPLAY_SRCS) $(INPUT_SRCS) $(SIM_SRCS)
 PLATFORM_OBJS := $(PLATFORM_SRCS:%.c=$(B)/obj/%.o)
 PLATFORM_LIBS := $(EGL_LIBS) $(OSMESA_LIBS) $(DRM_LIBS) $(X11_LIBS) $(WAYLAND_LIBS) $(GPIO_LIBS) -lm -lpthread

@@ -90,6 +90,16 @@ check: $(B)/cigi_seeds
 # ... FlightGear's and X-Plane's on recorded streams (tests/sim/data/) and hostile datagrams.
 $(eval $(call test_program,test_fgfs,tests/sim/test_fgfs.c platform/sim/fgfs.c,,))
 $(eval $(call test_program,test_xplane,tests/sim/test_xplane.c platform/sim/xplane.c,,))
+# ig: `cumulo ig` end to end: a CIGI host of our own (tests/sim/cigi_host.c) drives it, Wireshark's dissector (tshark)
+# decodes the exchange; recorded FlightGear and X-Plane streams replayed to it (tests/sim/sim_replay.c).
+$(B)/cigi_host: tests/sim/cigi_host.c tests/sim/cigi_encode.c $(B)/flags/test
+	$(CC) $(CFLAGS_TEST) -Itests/sim -o $@ tests/sim/cigi_host.c tests/sim/cigi_encode.c -lm
+$(B)/png_diff: tests/sim/png_diff.c $(CORE) $(B)/flags/test
+	$(CC) $(CFLAGS_TEST) -o $@ tests/sim/png_diff.c $(CORE) $(LIB_LIBS) -lm
+$(B)/sim_replay: tests/sim/sim_replay.c $(B)/flags/test
+	$(CC) $(CFLAGS_TEST) -o $@ tests/sim/sim_replay.c
+check: $(B)/cigi_host $(B)/png_diff $(B)/sim_replay
+CHECK_TESTS += tests/sim/test_ig_cigi.sh tests/sim/test_ig_fg_xplane.sh
 
 # tools: the Mie solver, the slab Monte Carlo and fitter, the path tracer.
 $(eval $(call test_program,test_mie,tests/mie/test_mie.c $(MIE_LIB_OBJS),,))

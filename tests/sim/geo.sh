@@ -1,0 +1,32 @@
+# tests/sim/geo.sh: for the `cumulo ig` tests, sourced: the eyepoint a host's geodetic pose should give, worked
+# here in awk from WGS84 (not from platform/sim/geodetic.c), and a comparison of comma-separated vectors.
+# wgs84 LAT LON ALT HEADING PITCH ROLL (origin in $LAT0 $LON0 $ALT0) prints "x,y,z fx,fy,fz ux,uy,uz": the eye in
+# world metres (east, up, south of the origin), where it looks and its up: ECEF of both points, then east, north, up
+# at the origin; the attitude as heading, pitch, roll in the aircraft's north-east-down frame.
+# heading, pitch, roll in the aircraft's north-east-down frame.
+wgs84() { # LAT LON ALT HEADING PITCH ROLL -> "x,y,z fx,fy,fz ux,uy,uz"
+  awk -v la=$1 -v lo=$2 -v h=$3 -v yw=$4 -v pt=$5 -v rl=$6 -v la0=$LAT0 -v lo0=$LON0 -v h0=$ALT0 'BEGIN {
+    d = atan2(0, -1) / 180; a = 6378137; f = 1 / 298.257223563; e2 = f * (2 - f)
+    ecef(la, lo, h, P); ecef(la0, lo0, h0, O)
+    for (i = 1; i <= 3; i++) D[i] = P[i] - O[i]
+    enu(la0, lo0, E, N, U)
+    # the aircraft: NED at its point, heading yaw about down, pitch about the new right, roll about forward
+    enu(la, lo, e, n, u)
+    cy = cos(yw*d); sy = sin(yw*d); cp = cos(pt*d); sp = sin(pt*d); cr = cos(rl*d); sr = sin(rl*d)
+    for (i = 1; i <= 3; i++) {
+      fw[i] = cp*cy*n[i] + cp*sy*e[i] - sp*(-u[i])
+      dn[i] = (cy*sp*cr + sy*sr)*n[i] + (sy*sp*cr - cy*sr)*e[i] + cp*cr*(-u[i])
+    }
+    printf "%.3f,%.3f,%.3f ", dot(D,E), dot(D,U), -dot(D,N)
+    printf "%.6f,%.6f,%.6f ", dot(fw,E), dot(fw,U), -dot(fw,N)
+    printf "%.6f,%.6f,%.6f\n", -dot(dn,E), -dot(dn,U), dot(dn,N)
+  }
+  function ecef(la, lo, h, X,   s, c, nn) { s = sin(la*d); c = cos(la*d); nn = a / sqrt(1 - e2*s*s)
+    X[1] = (nn+h)*c*cos(lo*d); X[2] = (nn+h)*c*sin(lo*d); X[3] = (nn*(1-e2)+h)*s }
+  function enu(la, lo, E, N, U,   s, c, so, co) { s = sin(la*d); c = cos(la*d); so = sin(lo*d); co = cos(lo*d)
+    E[1] = -so; E[2] = co; E[3] = 0; N[1] = -s*co; N[2] = -s*so; N[3] = c; U[1] = c*co; U[2] = c*so; U[3] = s }
+  function dot(A, B) { return A[1]*B[1] + A[2]*B[2] + A[3]*B[3] }'
+}
+# close A B TOL: every comma-separated component within TOL
+close() { awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { n = split(a, x, ","); m = split(b, y, ",");
+  if (n != m || n == 0) exit 1; for (i = 1; i <= n; i++) { v = x[i] - y[i]; if (v < 0) v = -v; if (v > t) exit 1 } }'; }
