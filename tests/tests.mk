@@ -114,6 +114,11 @@ CHECK_TESTS += tests/pathtrace/test_pt_cli.sh
 # build: configuration, install and an embedding program built against the installed copy (tests/build/).
 CHECK_TESTS += $(wildcard tests/build/test_*.sh)
 
+# A real FlightGear drives cumulo ig (its 1.8 GB of data keep it out of make check; FGCHECK_INSTALL=1 installs it).
+fgcheck: all $(B)/sim_replay
+	$(TEST_ENV) sh tests/run_tests.sh tests/sim/fgcheck.sh
+.PHONY: fgcheck
+
 # The long versions (larger images, finer sweeps, thick slabs): `make stress`.
 stress: all $(B)/test_extremes $(B)/test_ranges $(B)/test_slab $(B)/test_sky_field
 	$(TEST_ENV) CUMULO_STRESS=1 sh tests/run_tests.sh $(B)/test_extremes $(B)/test_ranges tests/slab/test_slab_stress.sh \

@@ -2,7 +2,9 @@
  *   sim_replay fg HOST:PORT FILE INTERVAL_MS      each line of FILE (FlightGear generic protocol) as one datagram
  *   sim_replay xplane LISTEN_PORT FILE INTERVAL_MS  a stand-in X-Plane: waits for the IG's RREF subscriptions, sends
  *       the datagrams of FILE (hex, one per line, '#' comments: tests/sim/data/xplane_rref.hex) to the subscriber,
- *       then waits for the unsubscriptions (frequency 0) the IG sends when it stops.
+ *       then waits for the unsubscriptions (frequency 0) the IG sends when it stops;
+ *   sim_replay record PORT FILE COUNT              writes COUNT datagrams received on PORT to FILE, one a line (a
+ *       real fgfs's second --generic output, for `make fgcheck`).
  * Lines on stdout: "sent N <line>" (fg), "subscribe index=I freq=F path=P", "sent N index=I value=V ..." (xplane, the
  * records decoded here as little-endian int32 and float32, independently of platform/sim/xplane.c) and
  * "unsubscribe index=I". Exits 0 when everything was sent (xplane: ten subscriptions and ten unsubscriptions seen
@@ -114,10 +116,11 @@ static int replay_xplane(int fd, FILE *f, long ms)
 int main(int argc, char **argv)
 {
     if (argc != 5) {
-        fprintf(stderr, "usage: sim_replay fg HOST:PORT FILE INTERVAL_MS | xplane LISTEN_PORT FILE INTERVAL_MS\n");
+        fprintf(stderr, "usage: sim_replay fg HOST:PORT FILE INTERVAL_MS | xplane LISTEN_PORT FILE INTERVAL_MS |\n"
+                        "                  record PORT FILE COUNT\n");
         return 2;
     }
-    FILE *f = fopen(argv[3], "r");
+    FILE *f = fopen(strcmp(argv[1], "record") ? argv[3] : "/dev/null", "r");
     int fd = socket(AF_INET, SOCK_DGRAM, 0);
     if (!f || fd < 0) {
         perror("sim_replay");
@@ -126,6 +129,26 @@ int main(int argc, char **argv)
     long ms = atol(argv[4]);
     struct sockaddr_in a = { .sin_family = AF_INET };
     a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (!strcmp(argv[1], "record")) {
+        fclose(f);
+        f = fopen(argv[3], "w");
+        a.sin_port = htons((uint16_t)atoi(argv[2]));
+        if (!f || bind(fd, (struct sockaddr *)&a, sizeof a)) {
+            perror("sim_replay: record");
+            return 1;
+        }
+        for (long i = 0; i < ms; i++) {
+            struct pollfd p = { .fd = fd, .events = POLLIN };
+            char b[2048];
+            ssize_t n = poll(&p, 1, 300000) > 0 ? recv(fd, b, sizeof b - 1, 0) : -1;
+            if (n < 0)
+                return 1;
+            b[n] = 0;
+            fprintf(f, "%s%s", b, n && b[n - 1] == '\n' ? "" : "\n");
+            fflush(f);
+        }
+        return fclose(f) ? 1 : 0;
+    }
     if (!strcmp(argv[1], "fg")) {
         const char *colon = strrchr(argv[2], ':');
         a.sin_port = htons((uint16_t)atoi(colon ? colon + 1 : argv[2]));
