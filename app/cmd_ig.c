@@ -219,7 +219,7 @@ static int run(cli_session *s, ig_args *a, cu_sim_link *l, ig_world *w)
     cu_sim_state st;
     memset(&st, 0, sizeof st);
     double t0 = cu_renderer_get_time(s->r), lat_hist[LATENCY_KEEP];
-    uint64_t start = now_ns(), ts_first = 0;
+    uint64_t start = now_ns(), ts_first = 0, last_log = 0;
     int have_ts = 0;
     long frames = 0, nlat = 0;
     char err[512], notice[256] = "";
@@ -228,9 +228,15 @@ static int run(cli_session *s, ig_args *a, cu_sim_link *l, ig_world *w)
         if (cu_sim_link_start_frame(l, (uint32_t)frames, (uint32_t)((now_ns() - start) / 10000)) < 0)
             fprintf(stderr, "cumulo ig: %s\n", l->last_error);
         wait_for_frame(l, &st, a->frame_timeout);
+        /* What the host got wrong, logged at most once a second (every time with -v): a flood of bad datagrams
+         * must not become a flood of log lines. */
         if (l->last_error[0]) {
-            if (a->o.verbose)
-                fprintf(stderr, "cumulo ig: %s\n", l->last_error);
+            uint64_t t = now_ns();
+            if (a->o.verbose || t - last_log >= 1000000000u) {
+                fprintf(stderr, "cumulo ig: %s (%lu of %lu datagrams rejected so far)\n", l->last_error, l->rejected,
+                        l->datagrams);
+                last_log = t;
+            }
             l->last_error[0] = 0;
         }
         /* The clouds' time: the host's timestamp where CIGI gives one (every channel of a multi-channel display then

@@ -12,7 +12,9 @@
  *          held at 60 % for three frames; the eye at the origin + 300 m looking north, 15 degrees up;
  *   20-24  "hostile": before each frame a burst of bad datagrams (see hostile()), then a valid frame as in "cover".
  * The frustum is the symmetric one of VFOV (vertical, degrees) at WIDTH x HEIGHT, so a scene file with the same
- * [camera] fov draws the same picture. Every frame's IG Control is big-endian except frames 3 and 16 (little-endian).
+ * [camera] fov draws the same picture. Every frame also defines view 1 (the same frustum, turned right by its full
+ * width: a second channel edge to edge with view 0), and frame 4 moves view 0 off the entity (10 m forward, 2 m up,
+ * 30 degrees right); the log's view0= and view1= say so (x, y, z, yaw). Every frame's IG Control is big-endian except frames 3 and 16 (little-endian).
  * Exits 0 when every Start of Frame was right and arrived in time (60 s a frame), 1 otherwise. */
 #include "cigi_encode.h"
 #include <arpa/inet.h>
@@ -88,6 +90,17 @@ static size_t frame_datagram(int k, uint8_t *b, size_t cap)
                                 .left = (float)-hfov, .right = (float)hfov, .top = (float)vfov,
                                 .bottom = (float)-vfov };
     n += cu_cigi_enc_view_def_put(&vd, swap, b + n, cap - n);
+    vd.view_id = 1; /* the second channel: the same frustum ... */
+    n += cu_cigi_enc_view_def_put(&vd, swap, b + n, cap - n);
+    /* ... turned right by its full width, so its left edge meets view 0's right edge */
+    cu_cigi_enc_view_control vc1 = { .view_id = 1, .enable = CU_CIGI_EN_YAW, .yaw = (float)(2 * hfov) };
+    n += cu_cigi_enc_view_control_put(&vc1, swap, b + n, cap - n);
+    /* frame 4 moves view 0 off the entity: 10 m forward, 2 m up, looking 30 degrees right; the others put it back
+     * (a View Control holds until the next one says otherwise) */
+    double vx = k == 4 ? 10 : 0, vz = k == 4 ? -2 : 0, vyaw = k == 4 ? 30 : 0;
+    cu_cigi_enc_view_control vc0 = { .view_id = 0, .enable = 0x3f, .x = (float)vx, .z = (float)vz,
+                                     .yaw = (float)vyaw };
+    n += cu_cigi_enc_view_control_put(&vc0, swap, b + n, cap - n);
     cu_cigi_enc_celestial c = { .hour = (uint8_t)p.hour, .minute = (uint8_t)p.minute, .sun = 1, .date_valid = 1,
                                 .date = 6212026 };
     n += cu_cigi_enc_celestial_put(&c, swap, b + n, cap - n);
@@ -98,8 +111,8 @@ static size_t frame_datagram(int k, uint8_t *b, size_t cap)
         n += cu_cigi_enc_weather_put(&w, swap, b + n, cap - n);
     }
     printf("host frame=%d phase=%s lat=%.9f lon=%.9f alt=%.3f yaw=%.3f pitch=%.3f roll=%.3f "
-           "utc=2026-06-21T%02d:%02d:00Z coverage=%.2f\n", k, p.phase, p.lat, p.lon, p.alt, p.yaw, p.pitch, p.roll,
-           p.hour, p.minute, p.coverage);
+           "utc=2026-06-21T%02d:%02d:00Z coverage=%.2f view0=%g,0,%g,%g view1=0,0,0,%.9f\n", k, p.phase, p.lat, p.lon,
+           p.alt, p.yaw, p.pitch, p.roll, p.hour, p.minute, p.coverage, vx, vz, vyaw, (double)(float)(2 * hfov));
     fflush(stdout);
     return n;
 }

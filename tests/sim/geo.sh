@@ -1,14 +1,14 @@
 # tests/sim/geo.sh: for the `cumulo ig` tests, sourced: the eyepoint a host's geodetic pose should give, worked
 # here in awk from WGS84 (not from platform/sim/geodetic.c), and a comparison of comma-separated vectors.
-# wgs84 LAT LON ALT HEADING PITCH ROLL (origin in $LAT0 $LON0 $ALT0) prints "x,y,z fx,fy,fz ux,uy,uz": the eye in
+# wgs84 LAT LON ALT HEADING PITCH ROLL [VIEW] (origin in $LAT0 $LON0 $ALT0) prints "x,y,z fx,fy,fz ux,uy,uz": the eye in
 # world metres (east, up, south of the origin), where it looks and its up: ECEF of both points, then east, north, up
-# at the origin; the attitude as heading, pitch, roll in the aircraft's north-east-down frame.
-# heading, pitch, roll in the aircraft's north-east-down frame.
-wgs84() { # LAT LON ALT HEADING PITCH ROLL -> "x,y,z fx,fy,fz ux,uy,uz"
-  awk -v la=$1 -v lo=$2 -v h=$3 -v yw=$4 -v pt=$5 -v rl=$6 -v la0=$LAT0 -v lo0=$LON0 -v h0=$ALT0 'BEGIN {
+# at the origin; the attitude as heading, pitch, roll in the aircraft's north-east-down frame. VIEW "x,y,z,yaw" is a
+# CIGI View Control: the eye that far along the aircraft's forward, right and down axes, turned by yaw about its down.
+wgs84() {
+  awk -v la=$1 -v lo=$2 -v h=$3 -v yw=$4 -v pt=$5 -v rl=$6 -v view="${7:-0,0,0,0}" -v la0=$LAT0 -v lo0=$LON0 \
+      -v h0=$ALT0 'BEGIN {
     d = atan2(0, -1) / 180; a = 6378137; f = 1 / 298.257223563; e2 = f * (2 - f)
     ecef(la, lo, h, P); ecef(la0, lo0, h0, O)
-    for (i = 1; i <= 3; i++) D[i] = P[i] - O[i]
     enu(la0, lo0, E, N, U)
     # the aircraft: NED at its point, heading yaw about down, pitch about the new right, roll about forward
     enu(la, lo, e, n, u)
@@ -16,7 +16,14 @@ wgs84() { # LAT LON ALT HEADING PITCH ROLL -> "x,y,z fx,fy,fz ux,uy,uz"
     for (i = 1; i <= 3; i++) {
       fw[i] = cp*cy*n[i] + cp*sy*e[i] - sp*(-u[i])
       dn[i] = (cy*sp*cr + sy*sr)*n[i] + (sy*sp*cr - cy*sr)*e[i] + cp*cr*(-u[i])
+      rt[i] = (cy*sp*sr - sy*cr)*n[i] + (sy*sp*sr + cy*cr)*e[i] + cp*sr*(-u[i])
     }
+    split(view, v, ","); cv = cos(v[4]*d); sv = sin(v[4]*d)
+    for (i = 1; i <= 3; i++) {
+      D[i] = P[i] + v[1]*fw[i] + v[2]*rt[i] + v[3]*dn[i] - O[i]
+      vf[i] = cv*fw[i] + sv*rt[i]
+    }
+    for (i = 1; i <= 3; i++) fw[i] = vf[i]
     printf "%.3f,%.3f,%.3f ", dot(D,E), dot(D,U), -dot(D,N)
     printf "%.6f,%.6f,%.6f ", dot(fw,E), dot(fw,U), -dot(fw,N)
     printf "%.6f,%.6f,%.6f\n", -dot(dn,E), -dot(dn,U), dot(dn,N)

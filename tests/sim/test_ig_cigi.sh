@@ -51,7 +51,7 @@ bad=""
 for k in 1 2 3 4 13; do
   hl=$(host_line $k); il=$(ig_line $k)
   set -- $(wgs84 "$(field lat "$hl")" "$(field lon "$hl")" "$(field alt "$hl")" "$(field yaw "$hl")" \
-                 "$(field pitch "$hl")" "$(field roll "$hl")")
+                 "$(field pitch "$hl")" "$(field roll "$hl")" "$(field view0 "$hl")")
   close "$1" "$(field eye "$il")" 0.01 && close "$2" "$(field fwd "$il")" 2e-6 && close "$3" "$(field up "$il")" 2e-6 ||
     bad="$bad frame $k: expected $1 $2 $3, ig '$(field eye "$il") $(field fwd "$il") $(field up "$il")';"
 done
@@ -107,6 +107,32 @@ if [ $ok -eq 1 ] && close "$(field eye "$il")" "0,300,0" 0.01 && [ -n "$(ig_line
 else t_fail hostile_datagrams_counted_and_skipped "$stats; last frame: $il"; fi
 lat=$(grep '^\[ig\] latency' "$OUT/ig.out")
 case "$lat" in *"median="[0-9]*" p95="[0-9]*) t_ok latency_reported ;; *) t_fail latency_reported "'$lat'" ;; esac
+
+# A second channel: view 1, turned right by the frustum's full width (the host defines it every frame), from its own
+# IG on the same script. Its eye looks where the host's View Control says, and its left edge meets view 0's right
+# edge: the columns either side of the seam are closer than view 0's right edge is to view 1's right edge.
+mkdir -p "$OUT/frames1"
+P1=$((Q + 1)); Q1=$((Q + 2))
+$C ig $SCENE --input "cigi:127.0.0.1:$P1,host=127.0.0.1:$Q1,view=1" --size ${W}x$H --set camera.fov=$FOV $ORIGIN \
+   --frame-timeout 60 --trace --save "$OUT/frames1" >"$OUT/ig1.out" 2>"$OUT/ig1.err" &
+IG=$!
+sleep 1
+timeout 600 build/cigi_host "127.0.0.1:$P1" $Q1 $W $H $FOV $LAT0 $LON0 $ALT0 >"$OUT/host1.log" 2>"$OUT/host1.err"
+hrc=$?
+sleep 1; kill -TERM $IG 2>/dev/null; wait $IG
+bad=""
+for k in 1 2 4 13; do
+  hl=$(host_line $k); il=$(grep " host_frame=$k " "$OUT/ig1.out" | tail -1)
+  set -- $(wgs84 "$(field lat "$hl")" "$(field lon "$hl")" "$(field alt "$hl")" "$(field yaw "$hl")" \
+                 "$(field pitch "$hl")" "$(field roll "$hl")" "$(field view1 "$hl")")
+  close "$1" "$(field eye "$il")" 0.01 && close "$2" "$(field fwd "$il")" 2e-6 && close "$3" "$(field up "$il")" 2e-6 ||
+    bad="$bad frame $k: expected $1 $2 $3, ig '$(field eye "$il") $(field fwd "$il") $(field up "$il")';"
+done
+f1=$(printf '%s/frames1/frame_%06d.png' "$OUT" "$(field frame "$(grep " host_frame=24 " "$OUT/ig1.out" | tail -1)")")
+seam=$(build/png_diff --columns "$(frame_png 24)" $((W - 1)) "$f1" 0); far=$(build/png_diff --columns "$(frame_png 24)" $((W - 1)) "$f1" $((W - 1)))
+if [ $hrc -eq 0 ] && [ -z "$bad" ] && awk -v s="${seam#mean=}" -v f="${far#mean=}" 'BEGIN { exit !(s < 0.5 * f) }'; then
+  t_ok second_channel_meets_the_first
+else t_fail second_channel_meets_the_first "host exit $hrc;$bad seam $seam, far $far"; fi
 
 # Wireshark's decoder on the capture: the fields it reads are the ones the host meant and the IG sent.
 if [ -z "$CAP" ]; then
