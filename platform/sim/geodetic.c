@@ -79,38 +79,35 @@ static void combine(const double v[3], const double a[3], const double b[3], con
 void cu_geo_eye(const cu_geo_frame *f, const cu_sim_state *st, double pos[3], double right[3], double up[3],
                 double fwd[3])
 {
-    /* NED at the entity, in ECEF: north, east, down */
-    double m[3][3], ned[3][3];
-    enu_axes(st->lat_deg, st->lon_deg, m);
-    for (int i = 0; i < 3; i++) {
-        ned[0][i] = m[1][i];
-        ned[1][i] = m[0][i];
-        ned[2][i] = -m[2][i];
-    }
-    /* the entity's body axes in ECEF, then the view's (its rotation follows the entity's) */
-    double bf[3], br[3], bd[3], ef[3], er[3], ed[3];
-    body_axes(st->yaw_deg, st->pitch_deg, st->roll_deg, bf, br, bd);
-    combine(bf, ned[0], ned[1], ned[2], ef);
-    combine(br, ned[0], ned[1], ned[2], er);
-    combine(bd, ned[0], ned[1], ned[2], ed);
-    double vf[3], vr[3], vd[3], cf[3], cr[3], cd[3];
-    body_axes(st->view_yaw_deg, st->view_pitch_deg, st->view_roll_deg, vf, vr, vd);
-    combine(vf, ef, er, ed, cf);
-    combine(vr, ef, er, ed, cr);
-    combine(vd, ef, er, ed, cd);
-    /* the eye: the entity's point plus the view offset along the entity's body axes */
-    double p[3], off[3], d[3];
+    /* Local level: cumulo's sky, ground and layers are flat, so the world about the eye is the eye's own tangent
+     * plane. The eye goes where the exact ECEF difference puts it east and north of the origin, at its height above
+     * sea level less the origin's (not 785 m lower 100 km out, as the tangent plane at the origin would put it:
+     * clouds at a constant altitude stay at a constant height over the eye), and its attitude is taken against its
+     * own north and horizon (meridians converge 0.7 degree over 100 km at 47 N). */
+    double p[3], d[3], w[3];
     cu_geo_to_ecef(st->lat_deg, st->lon_deg, st->alt_m, p);
-    combine(st->view_xyz, ef, er, ed, off);
     for (int i = 0; i < 3; i++)
-        d[i] = p[i] + off[i] - f->ecef0[i];
-    ecef_dir_to_world(f, d, pos);
-    ecef_dir_to_world(f, cf, fwd);
-    ecef_dir_to_world(f, cr, right);
-    double down[3];
-    ecef_dir_to_world(f, cd, down);
-    for (int i = 0; i < 3; i++)
-        up[i] = -down[i];
+        d[i] = p[i] - f->ecef0[i];
+    ecef_dir_to_world(f, d, w);
+    /* the entity's body axes and the view's in north-east-down, then as world x east, y up, z south */
+    double bf[3], br[3], bd[3], vf[3], vr[3], vd[3], cf[3], cr[3], cd[3], off[3];
+    body_axes(st->yaw_deg, st->pitch_deg, st->roll_deg, bf, br, bd);
+    body_axes(st->view_yaw_deg, st->view_pitch_deg, st->view_roll_deg, vf, vr, vd);
+    combine(vf, bf, br, bd, cf);
+    combine(vr, bf, br, bd, cr);
+    combine(vd, bf, br, bd, cd);
+    combine(st->view_xyz, bf, br, bd, off);
+    const double *ned[4] = { cf, cr, cd, off };
+    double *out[4] = { fwd, right, up, pos };
+    for (int k = 0; k < 4; k++) {
+        double s = k == 2 ? -1.0 : 1.0; /* up is minus down */
+        out[k][0] = s * ned[k][1];
+        out[k][1] = -s * ned[k][2];
+        out[k][2] = -s * ned[k][0];
+    }
+    pos[0] += w[0];
+    pos[1] += st->alt_m - f->alt0;
+    pos[2] += w[2];
 }
 
 void cu_geo_view_matrix(const cu_geo_frame *f, const cu_sim_state *st, float view[16])

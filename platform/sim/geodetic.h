@@ -1,6 +1,7 @@
 /* platform/sim/geodetic.h: a host simulation's geodetic eyepoint as cumulo's world camera: WGS84 latitude, longitude
  * and height to metres east, up and south of a database origin, and an aviation attitude (heading, pitch, roll) with a
- * view offset to a view matrix. Exact ECEF arithmetic, no flat-Earth approximation, in double. */
+ * view offset to a view matrix. The horizontal offset is exact ECEF arithmetic in double; the eye is then put in its
+ * own local-level frame (cu_geo_eye), because cumulo's ground and layers are flat. */
 #ifndef CU_PLATFORM_SIM_GEODETIC_H
 #define CU_PLATFORM_SIM_GEODETIC_H
 #include "sim_state.h"
@@ -24,7 +25,9 @@ void cu_geo_to_ecef(double lat_deg, double lon_deg, double alt_m, double ecef[3]
 void cu_geo_to_world(const cu_geo_frame *f, double lat_deg, double lon_deg, double alt_m, double world[3]);
 
 /* The eyepoint of st (entity pose, then the view offset in the entity's body frame and the view's rotation) as a
- * world position and the camera's axes in world coordinates (right, up, and forward = where it looks). */
+ * world position and the camera's axes in world coordinates (right, up, and forward = where it looks): east and
+ * south of the origin as cu_geo_to_world has them, up = its altitude less the origin's, and its attitude against
+ * its own north and horizon (local level: a flat world about the eye; see geodetic.c). */
 void cu_geo_eye(const cu_geo_frame *f, const cu_sim_state *st, double pos[3], double right[3], double up[3],
                 double fwd[3]);
 /* The same as a column-major view matrix (world -> eye; the eye looks down -z) for cu_frame. */

@@ -1,9 +1,11 @@
 # tests/sim/geo.sh: for the `cumulo ig` tests, sourced: the eyepoint a host's geodetic pose should give, worked
 # here in awk from WGS84 (not from platform/sim/geodetic.c), and a comparison of comma-separated vectors.
 # wgs84 LAT LON ALT HEADING PITCH ROLL [VIEW] (origin in $LAT0 $LON0 $ALT0) prints "x,y,z fx,fy,fz ux,uy,uz": the eye in
-# world metres (east, up, south of the origin), where it looks and its up: ECEF of both points, then east, north, up
-# at the origin; the attitude as heading, pitch, roll in the aircraft's north-east-down frame. VIEW "x,y,z,yaw" is a
-# CIGI View Control: the eye that far along the aircraft's forward, right and down axes, turned by yaw about its down.
+# world metres (east, up, south of the origin), where it looks and its up, local level: east and north of the origin
+# from the ECEF of both points in the origin's east-north-up, up as the altitude above the origin's; the attitude as
+# heading, pitch, roll in the aircraft's north-east-down frame, its axes against the aircraft's own east, up, north.
+# VIEW "x,y,z,yaw" is a CIGI View Control: the eye that far along the aircraft's forward, right and down axes, turned
+# by yaw about its down.
 wgs84() {
   awk -v la=$1 -v lo=$2 -v h=$3 -v yw=$4 -v pt=$5 -v rl=$6 -v view="${7:-0,0,0,0}" -v la0=$LAT0 -v lo0=$LON0 \
       -v h0=$ALT0 'BEGIN {
@@ -20,13 +22,15 @@ wgs84() {
     }
     split(view, v, ","); cv = cos(v[4]*d); sv = sin(v[4]*d)
     for (i = 1; i <= 3; i++) {
-      D[i] = P[i] + v[1]*fw[i] + v[2]*rt[i] + v[3]*dn[i] - O[i]
+      D[i] = P[i] - O[i]
+      off[i] = v[1]*fw[i] + v[2]*rt[i] + v[3]*dn[i]
       vf[i] = cv*fw[i] + sv*rt[i]
     }
-    for (i = 1; i <= 3; i++) fw[i] = vf[i]
-    printf "%.3f,%.3f,%.3f ", dot(D,E), dot(D,U), -dot(D,N)
-    printf "%.6f,%.6f,%.6f ", dot(fw,E), dot(fw,U), -dot(fw,N)
-    printf "%.6f,%.6f,%.6f\n", -dot(dn,E), -dot(dn,U), dot(dn,N)
+    # local level: east and north of the origin from the ECEF difference, height = altitude above the origin,
+    # the axes against the own east, up and north of the eye
+    printf "%.3f,%.3f,%.3f ", dot(D,E) + dot(off,e), h - h0 + dot(off,u), -dot(D,N) - dot(off,n)
+    printf "%.6f,%.6f,%.6f ", dot(vf,e), dot(vf,u), -dot(vf,n)
+    printf "%.6f,%.6f,%.6f\n", -dot(dn,e), -dot(dn,u), dot(dn,n)
   }
   function ecef(la, lo, h, X,   s, c, nn) { s = sin(la*d); c = cos(la*d); nn = a / sqrt(1 - e2*s*s)
     X[1] = (nn+h)*c*cos(lo*d); X[2] = (nn+h)*c*sin(lo*d); X[3] = (nn*(1-e2)+h)*s }
