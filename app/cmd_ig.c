@@ -315,8 +315,10 @@ int cmd_ig(int argc, char **argv)
     }
     cli_session s = {0};
     rc = cli_session_open(&s, &a.o);
-    if (rc)
+    if (rc) {
+        cli_session_close(&s); /* what it opened before it failed (the scene) */
         return rc;
+    }
     char err[512];
     ig_world w;
     static cu_sim_link link; /* 64 KiB of datagram buffer: not on the stack */

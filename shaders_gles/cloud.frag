@@ -54,6 +54,7 @@ uniform bool u_host_depth_on;
 uniform highp sampler2D u_host_depth;
 uniform mat4 u_host_inv_vp;
 uniform float u_host_clear;
+uniform float u_host_scale;       // full-resolution pixels per pixel of this pass (quality.cloud_downsample)
 #endif
 uniform float u_bound_R;       // radius of a sphere about the local origin containing every ellipsoid
 uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
@@ -243,7 +244,7 @@ void main()
     float t_end = 3.0e38;  // where the host's surface ends the ray, from ro
 #if !ENERGY_PASS
     if (u_host_depth_on) {
-        float d = texelFetch(u_host_depth, ivec2(gl_FragCoord.xy), 0).r;
+        float d = texelFetch(u_host_depth, ivec2(gl_FragCoord.xy * u_host_scale), 0).r;
         if (d != u_host_clear) {
             vec4 q = u_host_inv_vp * vec4(gl_FragCoord.xy * u_inv_viewport * 2.0 - 1.0, 2.0 * d - 1.0, 1.0);
             if (q.w != 0.0)

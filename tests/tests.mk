@@ -40,8 +40,9 @@ $(foreach t,render extremes sunmap ms fallback field,\
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # The extremes matrix of every key's range, through the GPU renderer and the path tracer.
 $(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
-# embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context).
-$(foreach t,embed embed_state shadows,\
+# embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context); the
+# low-resolution clouds against its depth too (test_downsample).
+$(foreach t,embed embed_state shadows downsample,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
     $(HEADLESS_LIBS) $(GLES_LIBS))))
 CHECK_TESTS += tests/gpu/test_host_scene.sh

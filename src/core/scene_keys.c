@@ -133,6 +133,10 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
         "in a field of clouds, one narrower than this on screen is marched with one segment fewer and two noise "
         "octaves (0: never)", S(lod_pixels)),
+    /* 1..4: beyond a quarter a cloud's edge spans 4 output pixels per texel and the upsampling shows */
+    INT("quality", "cloud_downsample", 1, "1", 1, 4, 0, "", "draw the clouds at 1/N of the resolution in each "
+        "direction and upsample them (depth-aware against the host's depth): about N^2 fewer cloud pixels",
+        S(cloud_downsample)),
     BOOL("quality", "cloud_shadows", "on", "clouds shade each other and the ground (needs half-float targets)",
          S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",

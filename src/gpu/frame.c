@@ -239,6 +239,13 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
     if (!f->clouds_only)
         cu_pass_sky_draw(&r->pass_sky, ctx);
+    /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them */
+    int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
+    if (n > 1) {
+        if (cu_pass_upsample_begin(&r->pass_upsample, ctx, f->width, f->height, n, r->pass_tonemap.hdr.format, err))
+            return 1;
+    }
+    ctx->host_scale = n;
     for (int j = 0; j < visible; j++) {
         cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
         cu_frame_bind_cloud(r, sl);
@@ -253,6 +260,9 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
      * cloud was in view. */
     if (visible == 0)
         ctx->camera.visible = 0;
+    if (n > 1) {
+        cu_pass_upsample_draw(&r->pass_upsample, ctx, r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+    }
     ctx->ke_scale = 1;
     cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
     GLenum e = gl->GetError();

@@ -85,6 +85,7 @@ typedef struct cu_gpu_scene {
     cu_camera camera;        /* this frame's */
     cu_host_depth host_depth;/* this frame's */
     int width, height;       /* this frame's size */
+    int host_scale;          /* frame pixels per pixel of the pass drawing (quality.cloud_downsample), 1 or N */
     cu_sun_maps sun;         /* published by the sun pass */
     GLuint sun_ext;          /* the cloud's shadow from other clouds (pass_shadow.c; a 1x1 zero when none) */
     GLuint ground_tau;       /* the ground's shadow map, 0 when none; its centre (x, z) and side (m) */

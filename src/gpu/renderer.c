@@ -105,6 +105,7 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_cloud_destroy(&r->pass_cloud_far, gl);
     cu_pass_sky_destroy(&r->pass_sky, gl);
     cu_pass_tonemap_destroy(&r->pass_tonemap, gl);
+    cu_pass_upsample_destroy(&r->pass_upsample, gl);
     cu_pass_slab_destroy(&r->pass_slab, gl);
     cu_pass_shadow_destroy(&r->pass_shadow, gl);
     cu_target_delete(&r->ground, gl);
@@ -182,7 +183,8 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
         cu_pass_energy_create(&r->pass_energy, ctx, phase, d.fs, err) ||
         cu_pass_sky_create(&r->pass_sky, ctx, d.fs, err) ||
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err) ||
-        (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)))
+        (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)) ||
+        (r->scene.cloud_downsample > 1 && cu_pass_upsample_create(&r->pass_upsample, ctx, err)))
         return 1;
     if (r->clouds.n > 1 && r->scene.lod_pixels > 0) {
         shader_defs far;

@@ -13,7 +13,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     LOC(sky_rad); LOC(ground_rad); LOC(ms_abc); LOC(ms_g); LOC(peak_f); LOC(ms_gain); LOC(out_scale); LOC(out_max);
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
-    LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear);
+    LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear); LOC(host_scale);
     LOC(shadow_g);
 #undef LOC
     cu_gpu_unit(gl, p, "u_sun_ext", CU_UNIT_SHADOW);
@@ -77,10 +77,13 @@ void cu_shading_frame(const cu_gpu_scene *ctx, const cu_shading_locs *l)
     const cu_camera *c = &ctx->camera;
     gl->Uniform1i(l->ortho, c->ortho);
     gl->Uniform3f(l->view_dir, (float)c->view_dir.x, (float)c->view_dir.y, (float)c->view_dir.z);
-    gl->Uniform2f(l->inv_viewport, 1.0f / (float)ctx->width, 1.0f / (float)ctx->height);
+    /* a pass at 1/N resolution: its pixel i is the frame's N (i + 1/2), whatever the rounding of its size */
+    float px = (float)(ctx->host_scale > 0 ? ctx->host_scale : 1);
+    gl->Uniform2f(l->inv_viewport, px / (float)ctx->width, px / (float)ctx->height);
     gl->Uniform1i(l->host_depth_on, ctx->host_depth.tex != 0);
     gl->UniformMatrix4fv(l->host_inv_vp, 1, GL_FALSE, c->host_inv_vp);
     gl->Uniform1f(l->host_clear, ctx->host_depth.clear);
+    gl->Uniform1f(l->host_scale, (float)(ctx->host_scale > 0 ? ctx->host_scale : 1));
 }
 
 void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_locs *l, vec3 cam, const float *vp,

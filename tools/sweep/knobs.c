@@ -42,6 +42,7 @@ static const knob_spec SPECS[] = {
     {"ms.closure", KF_ENUM, F(ms_closure), 2, {"off", "on"}, {0}},
     {"quality.integration", KF_ENUM, F(integration), 2, {"exponential", "kol"}, {0}},
     {"cloud.phase", KF_ENUM, F(phase), 3, {"mie", "hg", "cornette-shanks"}, {0}},
+    {"quality.cloud_downsample", KF_INT, F(cloud_downsample), 3, {"4", "2", "1"}, {1, 0, 1}},
     {"output.scale", KF_SCALE, 0, 3, {"0.5", "0.75", "1"}, {1, 0, 1}},
 };
 #undef F

@@ -24,7 +24,7 @@
 #define SW_MAX_SCENES 16
 #define SW_MAX_VALUES 8
 #define SW_MAX_SETS 24
-#define SW_NKNOBS 16   /* entries of the knob table (knobs.c checks) */
+#define SW_NKNOBS 17   /* entries of the knob table (knobs.c checks) */
 #define SW_VALUE_LEN 24
 #define SW_DEFAULT_BASELINE "scenes/cumulus.scene" /* the default scene: its settings are `high` */
 #define SW_MAX_GREEDY 24 /* greedy steps (combinations measured) at most */
