@@ -30,6 +30,7 @@ static const char bench_help[] =
     "  --warmup N             frames rendered first and not measured (default 3)\n"
     "  --csv FILE             append one row to FILE (header written when the file is new)\n"
     "  --sun-every-frame      move the sun 0.01 deg of azimuth each frame (measures the sun-dependent passes)\n"
+    "  --passes               time each pass too (glFinish between them) and print their medians\n"
     "  --time-step S          advance the scene time S seconds each frame (wind, life cycles, boil, time_utc)\n"
     "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n"
     "  --camera MODE          static (the scene's [camera], default); orbit: a new pose every frame, passed as\n"
@@ -78,7 +79,7 @@ static int parse_count(const char *opt, const char *v, int min, int *out)
 }
 
 enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY, OPT_CAMERA, OPT_ORBIT_STEP,
-       OPT_TIME_STEP };
+       OPT_TIME_STEP, OPT_PASSES };
 
 int cmd_bench(int argc, char **argv)
 {
@@ -92,10 +93,11 @@ int cmd_bench(int argc, char **argv)
         {"camera", required_argument, NULL, OPT_CAMERA},
         {"orbit-step", required_argument, NULL, OPT_ORBIT_STEP},
         {"time-step", required_argument, NULL, OPT_TIME_STEP},
+        {"passes", no_argument, NULL, OPT_PASSES},
         {NULL, 0, NULL, 0},
     };
     cli_opts o = {0};
-    int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC;
+    int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC, passes = 0;
     double orbit_step = 1.0;
     double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
     double time_step = 0;   /* s of scene time per frame */
@@ -129,6 +131,7 @@ int cmd_bench(int argc, char **argv)
             sun_every_frame = 1;
             break;
         case OPT_SUN_EVERY: sun_every_frame = 1; break; /* measure the sun pass too, as when a knob turns */
+        case OPT_PASSES: passes = 1; break;
         case OPT_TIME_STEP:
             time_step = strtod(optarg, &end);
             if (end == optarg || *end || !(time_step > 0) || time_step > 1e6) {
@@ -188,7 +191,9 @@ int cmd_bench(int argc, char **argv)
     printf("    LP_NUM_THREADS=%s\n", lp ? lp : "(unset)");
     printf("    Timing:        wall clock per frame incl. glFinish (no GPU timer query on this path)\n");
     printf("=======================================================\n");
-    double *t = malloc(sizeof(double) * 2 * (size_t)frames), *t_still = t + frames;
+    double *t = malloc(sizeof(double) * (2 + CU_PASS_COUNT) * (size_t)frames), *t_still = t + frames;
+    double *t_pass = t_still + frames; /* [pass * frames + frame] */
+    cu_renderer_set_profiling(s.r, passes);
     if (!t) {
         cli_session_close(&s);
         return 1;
@@ -217,6 +222,10 @@ int cmd_bench(int argc, char **argv)
                 rc = 1;
             if (i >= warmup)
                 (pass ? t_still : t)[i - warmup] = now_ms() - t0;
+            double ms[CU_PASS_COUNT];
+            if (passes && !pass && i >= warmup && !cu_renderer_pass_times(s.r, ms))
+                for (int k = 0; k < CU_PASS_COUNT; k++)
+                    t_pass[k * frames + i - warmup] = ms[k];
         }
         if (rc) {
             free(t);
@@ -243,6 +252,12 @@ int cmd_bench(int argc, char **argv)
     base = base ? base + 1 : o.scene_path;
     printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts, 1000.0 / med, med, p95,
            frames);
+    if (passes) { /* each pass's median over the frames (the medians need not add up to the frame's) */
+        printf("[%s] %s: passes (median ms, glFinish between them):", base, opts);
+        for (int k = 0; k < CU_PASS_COUNT; k++)
+            printf(" %s=%.3f", cu_pass_name(k), median(t_pass + (size_t)k * frames, frames));
+        printf("\n");
+    }
     if (camera == CAM_BOTH) {
         printf("[%s] %s:unmoved: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts,
                1000.0 / still_med, still_med, still_p95, frames);

@@ -25,6 +25,7 @@ typedef struct ig_args {
     double frame_timeout;     /* s: a frame is drawn anyway when the host says nothing for this long */
     double extent;            /* m: the host's layers' squares */
     const char *save_dir;     /* --save: every frame as DIR/frame_NNNNNN.png */
+    const char *dump_scene;   /* --dump-scene: the scene drawn last, written at the end */
     int trace;                /* --trace: one line per frame on stdout */
 } ig_args;
 
@@ -32,7 +33,8 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "usage: cumulo ig SCENE [--input SPEC] [--frames N] [--frame-timeout S] [--layer-extent M] [--save DIR]\n"
-        "                 [--trace] [--platform drm|x11|wayland|headless] [--size WxH] [--set S.K=V]... [-v]\n"
+        "                 [--trace] [--dump-scene FILE] [--platform drm|x11|wayland|headless] [--size WxH]\n"
+        "                 [--set S.K=V]... [-v]\n"
         "  Draws SCENE as a simulator's image generator: the host moves the eyepoint, sets the date and time (the sun\n"
         "  at the eyepoint) and the cloud layers. Geodetic positions are WGS84 about the scene's database origin\n"
         "  ([scene] origin_latitude, origin_longitude, origin_altitude).\n"
@@ -48,6 +50,7 @@ static void usage(FILE *f)
         "  --layer-extent M    side of the square the host's cloud layers fill about the eye, 1000..200000 m\n"
         "                      (default 20000)\n"
         "  --save DIR          write every frame as DIR/frame_NNNNNN.png\n"
+        "  --dump-scene FILE   at the end, write the scene drawn last (the file with the host's layers as [layer]s)\n"
         "  --trace             one line per frame on stdout: frame numbers, eye, sun, layers, latency\n"
         "  --platform, --size, --set, --time, --data-dir, -v   as for cumulo run\n");
 }
@@ -59,12 +62,13 @@ static uint64_t now_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
-enum { OPT_INPUT = 0x200, OPT_FRAMES, OPT_TIMEOUT, OPT_EXTENT, OPT_SAVE, OPT_TRACE };
+enum { OPT_INPUT = 0x200, OPT_FRAMES, OPT_TIMEOUT, OPT_EXTENT, OPT_SAVE, OPT_TRACE, OPT_DUMP };
 static const struct option long_opts[] = {
     CLI_COMMON_LONGOPTS,
     {"input", required_argument, NULL, OPT_INPUT}, {"frames", required_argument, NULL, OPT_FRAMES},
     {"frame-timeout", required_argument, NULL, OPT_TIMEOUT}, {"layer-extent", required_argument, NULL, OPT_EXTENT},
     {"save", required_argument, NULL, OPT_SAVE}, {"trace", no_argument, NULL, OPT_TRACE},
+    {"dump-scene", required_argument, NULL, OPT_DUMP},
     {NULL, 0, NULL, 0},
 };
 
@@ -131,6 +135,7 @@ static int parse_args(ig_args *a, int argc, char **argv)
             break;
         case OPT_SAVE: a->save_dir = optarg; break;
         case OPT_TRACE: a->trace = 1; break;
+        case OPT_DUMP: a->dump_scene = optarg; break;
         case ':': fprintf(stderr, "cumulo ig: %s needs a value\n", argv[at]); return 2;
         default:
             fprintf(stderr, "cumulo ig: unknown option '%s'\n", argv[at]);
@@ -296,6 +301,20 @@ static int run(cli_session *s, ig_args *a, cu_sim_link *l, ig_world *w)
     return rc;
 }
 
+/* The scene drawn last: the file's text and the host's layers (ig_world.c). Every write is checked. */
+static int dump_scene(const ig_world *w, const char *path)
+{
+    char layers[4096];
+    size_t n = ig_layers_text(w->layers, w->geo.alt0, w->extent, layers, sizeof layers);
+    FILE *f = fopen(path, "w");
+    int bad = !f || fwrite(w->base_text, 1, w->base_len, f) != w->base_len || fwrite(layers, 1, n, f) != n;
+    if (f && fclose(f))
+        bad = 1;
+    if (bad)
+        fprintf(stderr, "cumulo ig: cannot write %s\n", path);
+    return bad;
+}
+
 int cmd_ig(int argc, char **argv)
 {
     ig_args a;
@@ -332,6 +351,8 @@ int cmd_ig(int argc, char **argv)
     cu_sim_link_describe(&link, what, sizeof what);
     fprintf(stderr, "cumulo ig: %s, %dx%d, %s\n", what, s.width, s.height, cu_renderer_gl_string(s.r, 1));
     rc = run(&s, &a, &link, &w);
+    if (a.dump_scene && dump_scene(&w, a.dump_scene))
+        rc = 1;
     cu_sim_link_close(&link);
     ig_world_free(&w);
     cli_session_close(&s);

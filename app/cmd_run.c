@@ -7,6 +7,7 @@
 #include "drm_mode.h"
 #include "input_set.h"
 #include "run_clock.h"
+#include "run_usage.h"
 #include "sun_control.h"
 #include <errno.h>
 #include <getopt.h>
@@ -41,61 +42,6 @@ typedef struct run_args {
 
 /* The display, its renderer and the scene, opened as every subcommand opens them (app/session.c). */
 typedef cli_session run_session;
-
-static void list_display_backends(FILE *f)
-{
-    for (int i = 0; cu_display_backends[i]; i++)
-        fprintf(f, " %s", cu_display_backends[i]->name);
-    fprintf(f, " (headless = egl)\n");
-}
-
-static void usage(FILE *f)
-{
-    fprintf(f,
-        "usage: cumulo run SCENE [--platform drm|x11|wayland|headless] [--frames N] [--size WxH] [--fullscreen]\n"
-        "                  [--mode WxH[@Hz]] [--device /dev/dri/cardN] [--input SPEC]... [--no-stdin]\n"
-        "                  [--knob azimuth|elevation] [--step N] [--accel K] [--sun-elevation-range MIN:MAX]\n"
-        "                  [--sun-azimuth-range MIN:MAX] [--clock [--clock-offset S] [--time-scale K]]\n"
-        "                  [--set section.key=value]... [-v]\n"
-        "  --input gpio:chip=gpiochip0,a=17,b=27[,button=22][,steps=4][,debounce=1000]   rotary encoder (libgpiod)\n"
-        "  --input evdev:/dev/input/event3 | evdev:name=NAME   keyboard (arrows, +/-) or dial (USB knob, encoder)\n"
-        "  --input stdin       commands: sun EL AZ | elevation EL | azimuth AZ | turn N | toggle | offset MINUTES |\n"
-        "                      status | quit\n"
-        "  stdin is read by default unless --no-stdin. Each sun change is logged on stderr as\n"
-        "  'sun elevation=E azimuth=A source=S'; with --clock each change of the offset as\n"
-        "  'clock utc=T offset=+Mmin elevation=E azimuth=A source=S'.\n"
-        "  --platform NAME     display back end (default headless): drm full screen on DRM/KMS, x11 or wayland window\n"
-        "  --frames N          stop after N frames (default: run until quit, SIGINT or SIGTERM)\n"
-        "  --fullscreen        windowed back ends: cover the screen\n"
-        "  --mode WxH[@Hz]     drm: the display mode (default: the connector's preferred one)\n"
-        "  --device PATH       drm: /dev/dri/cardN or a /dev/dri/by-path name (default: probe)\n"
-        "  --wait-display S    retry opening the display for up to S seconds, 0..3600 (boot: the KMS driver can\n"
-        "                      come late; default 0)\n"
-        "  --no-stdin          do not read commands from standard input (kiosks, systemd)\n"
-        "  --knob AXIS         what the knob turns first: azimuth (default) or elevation; the button toggles\n"
-        "  --step N            per detent: degrees, 0.001..90 (default 1; elevation moves half of it); with --clock\n"
-        "                      minutes of the time of day, 0.001..1440 (default 10)\n"
-        "  --accel K           acceleration of fast turns, 0..100 (default 0.25; 0: none)\n"
-        "  --sun-elevation-range MIN:MAX, --sun-azimuth-range MIN:MAX   limits of the knob (degrees)\n"
-        "  --clock             the sun follows the real clock (UTC) at the scene's [sun] latitude and longitude, the\n"
-        "                      clouds drift in real time from its [scene] time. The knob, +/- and left/right offset\n"
-        "                      the time of day by --step minutes (up/down: an hour), the button puts the offset back\n"
-        "                      to 0, stdin 'offset MINUTES' sets it (-1440..1440); 'sun', 'elevation' and 'azimuth'\n"
-        "                      are refused, --knob and the ranges do not apply, 'status' prints the time shown\n"
-        "  --clock-offset S    with --clock: shift the clock by S seconds, -1e9..1e9 (default 0; -21600: the sky of\n"
-        "                      six hours ago)\n"
-        "  --time-scale K      with --clock: the clock runs K times as fast, 0 < K <= 1e6 (default 1; 1440: a day a\n"
-        "                      minute); the clouds keep real time\n"
-        "  --size WxH, --set SECTION.KEY=V, --data-dir DIR, -v   as for cumulo render (cumulo render --help)\n"
-        "  -h, --help, --version\n");
-    fprintf(f, "display back ends in this build:");
-    list_display_backends(f);
-    fprintf(f, "inputs in this build:");
-    for (int i = 0; cu_input_backends[i]; i++)
-        fprintf(f, " %s", cu_input_backends[i]->name);
-    const cu_input_backend *gpio = cu_input_find(CU_INPUT_GPIO);
-    fprintf(f, "\ngpio: %s\n", gpio ? gpio->lib : "not built (no libgpiod)");
-}
 
 static uint64_t now_ns(void)
 {
@@ -206,14 +152,14 @@ static int parse_args(run_args *a, int argc, char **argv)
         char name[40];
         snprintf(name, sizeof name, "--%s", idx >= 0 ? long_opts[idx].name : "");
         if (c == 'h') {
-            usage(stdout);
+            run_usage(stdout);
             return 0;
         } else if (c == OPT_VERSION) {
             cli_print_version(stdout, "cumulo");
             return 0;
         } else if (c == '?' || c == -1) { /* -1 before the end: "--", never the end of the options here */
             fprintf(stderr, "cumulo run: unknown option '%s'\n", argv[at]);
-            usage(stderr);
+            run_usage(stderr);
             return 2;
         } else if (c == ':') {
             fprintf(stderr, "cumulo: %s needs a value\n", argv[at]);
@@ -229,7 +175,7 @@ static int parse_args(run_args *a, int argc, char **argv)
         }
     }
     if (!a->o.scene_path) {
-        usage(stderr);
+        run_usage(stderr);
         return 2;
     }
     if (a->clock_only && !a->clock) {
@@ -323,7 +269,7 @@ static const char *axis_name(cu_sun_axis axis) { return axis == CU_SUN_AZIMUTH ?
 
 /* Applies what the inputs said, one sun pass however many detents or commands came. Returns 1 on quit. */
 static int apply_actions(const cu_action *acts, const char **source, int n, cu_sun_ctl *sun, run_clock *clock,
-                         cu_renderer *r, long frames)
+                         cu_renderer *r, long frames, int *changed)
 {
     int moved = 0, k;
     cu_error e;
@@ -349,6 +295,7 @@ static int apply_actions(const cu_action *acts, const char **source, int n, cu_s
     }
     if (moved && cu_renderer_set_sun(r, sun->el, sun->az, &e))
         fprintf(stderr, "cumulo: %s\n", e.msg);
+    *changed |= moved;
     return k < n; /* stopped at a quit */
 }
 
@@ -401,15 +348,21 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clo
 {
     /* Headless without a frame count has no vsync: wait for input up to a 60 Hz frame instead of spinning. */
     int idle_headless = (!strcmp(s->be->name, "egl") || !strcmp(s->be->name, "osmesa")) && !a->frames_max;
+    /* Nothing moved, nothing redrawn: without --clock (clouds drifting) or --frames (a measurement), on DRM/KMS (the
+     * last flip stays on screen) and headless, a frame in which nothing changed is not drawn: the loop waits for input
+     * (100 ms at most). Windows are redrawn every frame (an uncovered window needs its pixels). */
+    int hold = !clock && !a->frames_max && (idle_headless || !strcmp(s->be->name, "drm"));
+    int dirty = 1, last_w = -1, last_h = -1;
+    long frames = 0, drawn = 0;
     uint64_t t_start = now_ns();
-    long frames = 0;
     int rc = 0, any_open, any_ended;
     int steered = cu_input_set_left(&a->inputs, &any_open, &any_ended) > 0; /* a requested input is there */
     while (!quit_signal && (!a->frames_max || frames < a->frames_max)) {
         cu_action acts[MAX_ACTIONS];
         const char *source[MAX_ACTIONS];
-        int n = cu_input_set_poll(&a->inputs, idle_headless ? 16 : 0, acts, source, MAX_ACTIONS);
-        if (apply_actions(acts, source, n, sun, clock, s->r, frames))
+        int n = cu_input_set_poll(&a->inputs, hold && !dirty ? 100 : idle_headless ? 16 : 0, acts, source,
+                                  MAX_ACTIONS);
+        if (apply_actions(acts, source, n, sun, clock, s->r, frames, &dirty))
             break;
         if (!cu_input_set_left(&a->inputs, &any_open, &any_ended) && steered) {
             warn_inputs_gone(&a->inputs, "no requested input is left", clock != NULL);
@@ -424,6 +377,10 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clo
         char err[512];
         cu_error e;
         s->be->frame(s->disp, &fbo, &w, &h);
+        if (hold && !dirty && w == last_w && h == last_h) {
+            frames++; /* the picture on the screen is still this frame's */
+            continue;
+        }
         cu_frame f = {.fbo = fbo, .width = w, .height = h};
         if (cu_render(s->r, &f, &e)) {
             fprintf(stderr, "cumulo: %s\n", e.msg);
@@ -437,12 +394,15 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clo
             break; /* < 0: the window was closed */
         }
         frames++;
+        drawn++;
+        dirty = 0;
+        last_w = w, last_h = h;
     }
     double secs = (double)(now_ns() - t_start) * 1e-9;
     if (quit_signal)
         fprintf(stderr, "cumulo: %s, stopping\n", quit_signal == SIGINT ? "interrupted" : "terminated");
-    printf("[run] %s: frames=%ld FPS: %.1f FrameTime: %.3f ms\n", a->o.scene_path, frames,
-           secs > 0 ? frames / secs : 0.0, frames ? secs * 1000.0 / frames : 0.0);
+    printf("[run] %s: frames=%ld FPS: %.1f FrameTime: %.3f ms drawn=%ld\n", a->o.scene_path, frames,
+           secs > 0 ? frames / secs : 0.0, frames ? secs * 1000.0 / frames : 0.0, drawn);
     fflush(stdout);
     return rc;
 }
@@ -456,7 +416,7 @@ int cmd_run(int argc, char **argv)
     run_session s = { .be = cu_display_find(a.o.backend) };
     if (!s.be) {
         fprintf(stderr, "cumulo: no display back end '%s' in this build; built:", a.o.backend);
-        list_display_backends(stderr);
+        run_list_display_backends(stderr);
         return 2;
     }
 

@@ -192,7 +192,15 @@ int ig_world_apply(ig_world *w, cu_sim_state *st, cu_renderer *r, int width, int
     }
     if (st->time_valid && (ch & (CU_SIM_TIME | CU_SIM_POSE) || !w->have_sun) && apply_sun(w, st, r, err, n))
         return 1;
-    if (ch & CU_SIM_LAYERS) {
+    /* A layer without a wind of its own drifts with the global one (CIGI Atmosphere Control). */
+    cu_sim_layer eff[CU_SIM_LAYERS_MAX];
+    memcpy(eff, st->layers, sizeof eff);
+    for (int i = 0; i < CU_SIM_LAYERS_MAX; i++)
+        if (eff[i].wind_speed == 0 && st->wind_valid) {
+            eff[i].wind_speed = st->wind_speed;
+            eff[i].wind_from_deg = st->wind_from_deg;
+        }
+    if (ch & (CU_SIM_LAYERS | CU_SIM_WIND)) {
         for (int i = 0; i < CU_SIM_LAYERS_MAX; i++) {
             const cu_sim_layer *l = &st->layers[i];
             if (l->enabled && l->coverage > 0 && !ig_layer_type(l))
@@ -202,14 +210,14 @@ int ig_world_apply(ig_world *w, cu_sim_state *st, cu_renderer *r, int width, int
                 snprintf(w->notice, sizeof w->notice, "layer %d: scud and the transition band are not modelled",
                          i + 1);
         }
-        w->layers_pending = !same_layers(st->layers, w->layers);
+        w->layers_pending = !same_layers(eff, w->layers);
     }
     if (w->layers_pending && now - w->last_rebuild >= REBUILD_INTERVAL) {
         w->last_rebuild = now;
         w->layers_pending = 0;
-        if (rebuild(w, st->layers, r, err, n))
+        if (rebuild(w, eff, r, err, n))
             return 1;
-        memcpy(w->layers, st->layers, sizeof w->layers);
+        memcpy(w->layers, eff, sizeof w->layers);
         w->rebuilds++;
     }
     return 0;

@@ -34,7 +34,8 @@ typedef struct ig_world {
 int  ig_world_init(ig_world *w, const cu_scene *base, const char *scene_name, double extent, char *err, size_t n);
 void ig_world_free(ig_world *w);
 /* Applies what st changed (its bits are cleared) to r for a width x height frame at monotonic time now (s): the camera,
- * the sun, the wrap centre, and the layers (the scene is rebuilt at most once a second; the scene time is kept).
+ * the sun, the wrap centre, and the layers (a layer without a wind of its own takes the global one; the scene is
+ * rebuilt at most twice a second; the scene time is kept).
  * 0, or 1 with a message (the renderer keeps what it had). */
 int  ig_world_apply(ig_world *w, cu_sim_state *st, cu_renderer *r, int width, int height, double now, char *err,
                     size_t n);

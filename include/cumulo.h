@@ -138,6 +138,20 @@ typedef struct cu_frame {
  * left it when this returns; so do cu_renderer_create, cu_renderer_set_scene and cu_renderer_set_sun. */
 int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
 
+/* ---- profiling: where a frame's time goes ---- */
+enum { CU_PASS_MAPS, CU_PASS_SHADOWS, CU_PASS_ENERGY, CU_PASS_SKY, CU_PASS_CLOUDS, CU_PASS_UPSAMPLE, CU_PASS_TONEMAP,
+       CU_PASS_COUNT };
+/* A pass's name for reports: "maps" (the clouds' sun, slab and zenith maps), "shadows" (cloud-on-cloud and ground
+ * shadow maps), "energy" (the energy closure), "sky", "clouds", "upsample" (quality.cloud_downsample), "tonemap";
+ * NULL outside 0..CU_PASS_COUNT-1. */
+const char *cu_pass_name(int pass);
+/* 1: time every pass of each frame by the wall clock between glFinish calls (which serialise CPU and GPU, so a
+ * profiled frame is slower than a plain one and its passes add up to a little less than it); 0: off, the default.
+ * GPU timer queries (EXT_disjoint_timer_query) are not used yet. */
+void cu_renderer_set_profiling(cu_renderer *r, int on);
+/* The last profiled frame's milliseconds per pass into ms[CU_PASS_COUNT]: 0, or 1 when none was profiled. */
+int  cu_renderer_pass_times(const cu_renderer *r, double ms[CU_PASS_COUNT]);
+
 /* Image files for screenshots: RGBA8 pixels, top row first, as 8-bit PNG; RGB float pixels (linear radiance, top
  * row first) as PFM. Every write is checked, including the final flush and close (a full disk is an error). */
 int  cu_write_png(const char *path, const unsigned char *rgba, int width, int height, cu_error *err);

@@ -1,6 +1,7 @@
 /* src/gpu/frame.c: one frame: the clouds in view (culled, sorted back to front), their maps at the level of detail
  * their size on screen asks for, the energy closure, then the sky, each cloud and the tone map, in order. */
 #include "frame.h"
+#include "profile.h"
 #include "camera.h"
 #include "error.h"
 #include "glstate.h"
@@ -207,6 +208,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     ctx->height = f->height;
     ctx->host_depth.tex = f->depth_texture;
     ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
+    cu_profile_begin(r);
     int visible = visible_clouds(r, view, proj, err);
     if (visible < 0)
         return 1;
@@ -215,17 +217,21 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     for (int j = visible - 1; j >= 0; j--)
         if (cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
             return 1;
+    cu_profile_mark(r, CU_PASS_MAPS);
     for (int j = 0; j < visible; j++)
         if (cu_frame_cloud_shadow(r, r->order[j], err))
             return 1;
+    cu_profile_mark(r, CU_PASS_SHADOWS);
     if (r->sun_dirty)
         energy_closure(r, visible);
+    cu_profile_mark(r, CU_PASS_ENERGY);
     /* The sky's camera: the view's directions alone (the world origin as the cloud frame). The sun as it is now: with
      * no cloud in view nothing above has set it since cu_renderer_set_sun moved it. */
     ctx->cloud = &r->none;
     cu_gpu_scene_set_sun(ctx);
     if (cu_camera_build(&ctx->camera, view, proj, v3(0, 0, 0), 1.0, err) || cu_frame_ground_shadow(r, err))
         return 1;
+    cu_profile_mark(r, CU_PASS_SHADOWS);
 
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
     gl->Viewport(0, 0, f->width, f->height);
@@ -239,6 +245,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
     if (!f->clouds_only)
         cu_pass_sky_draw(&r->pass_sky, ctx);
+    cu_profile_mark(r, CU_PASS_SKY);
     /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them */
     int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
     if (n > 1) {
@@ -260,11 +267,14 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
      * cloud was in view. */
     if (visible == 0)
         ctx->camera.visible = 0;
+    cu_profile_mark(r, CU_PASS_CLOUDS);
     if (n > 1) {
         cu_pass_upsample_draw(&r->pass_upsample, ctx, r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+        cu_profile_mark(r, CU_PASS_UPSAMPLE);
     }
     ctx->ke_scale = 1;
     cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
+    cu_profile_mark(r, CU_PASS_TONEMAP);
     GLenum e = gl->GetError();
     if (e != GL_NO_ERROR)
         return cu_fail(err, "render: GL error 0x%x", e);

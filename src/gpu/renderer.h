@@ -29,6 +29,8 @@ struct cu_renderer {
     cu_sky sky;
     double time;          /* the scene time the clouds are at (s) */
     double wrap_cx, wrap_cz; /* cu_renderer_set_wrap_center's, kept across scenes */
+    int profile, profiled;   /* cu_renderer_set_profiling; a frame was profiled */
+    double pass_ms[CU_PASS_COUNT], prof_t; /* this frame's times per pass (ms), and the last mark's clock */
     int *order;           /* this frame's visible clouds, back to front (clouds.n) */
     double *order_key;
     cu_camera *cams;      /* each cloud's camera this frame */

@@ -32,6 +32,18 @@ if grep -q '^status elevation=33.000 azimuth=330.000 knob=elevation' "$OUT/s.out
    ! grep -q 'frames=1000 ' "$OUT/s.out"; then t_ok stdin_status_and_quit
 else t_fail stdin_status_and_quit "$(cat "$OUT/s.out")"; fi
 
+# Nothing moved, nothing redrawn: headless without --frames, a frame in which nothing changed is not drawn; a sun
+# move draws one. Three quiet half-seconds around one move: two frames drawn (the first and the move's), while the
+# loop goes on counting the frames it held.
+{ sleep 0.5; printf 'status\n'; sleep 0.5; printf 'sun 30 100\n'; sleep 0.5; printf 'status\nquit\n'; } |
+  $C run $S --platform headless --size 64x48 >"$OUT/i.out" 2>"$OUT/i.err"
+rc=$?
+f1=$(sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$OUT/i.out" | head -1)
+f2=$(sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$OUT/i.out" | tail -1)
+if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=2$' "$OUT/i.out" && [ -n "$f1" ] && [ "$f2" -gt "$f1" ]; then
+  t_ok idle_kiosk_draws_only_changes
+else t_fail idle_kiosk_draws_only_changes "exit $rc, status frames $f1 then $f2: $(tail -1 "$OUT/i.out")"; fi
+
 # Limits from the command line.
 printf 'sun 80 300\n' | $C run $S --platform headless --frames 3 --size 64x48 --sun-elevation-range 5:60 \
   --sun-azimuth-range 90:270 >/dev/null 2>"$OUT/l.err"

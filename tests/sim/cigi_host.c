@@ -9,7 +9,8 @@
  *   1-4    "move": the ownship flies north, east, climbs and turns (heading 0, 90, 180, 270; pitch 5; roll 0, 10);
  *   5-12   "day": the ownship at the origin + 300 m, 21 June 2026 every three hours from 00:30;
  *   13-19  "cover": a cumulus layer (layer 1, base ALT0 + 1200 m, 1500 m thick) at coverage 0, 20, 40, 60 % then
- *          held at 60 % for three frames; the eye at the origin + 300 m looking north, 15 degrees up;
+ *          held at 60 % for three frames, with a global west wind of 10 m/s (Atmosphere Control); the eye at the
+ *          origin + 300 m looking north, 15 degrees up;
  *   20-24  "hostile": before each frame a burst of bad datagrams (see hostile()), then a valid frame as in "cover".
  * The frustum is the symmetric one of VFOV (vertical, degrees) at WIDTH x HEIGHT, so a scene file with the same
  * [camera] fov draws the same picture. Every frame also defines view 1 (the same frustum, turned right by its full
@@ -104,7 +105,9 @@ static size_t frame_datagram(int k, uint8_t *b, size_t cap)
     cu_cigi_enc_celestial c = { .hour = (uint8_t)p.hour, .minute = (uint8_t)p.minute, .sun = 1, .date_valid = 1,
                                 .date = 6212026 };
     n += cu_cigi_enc_celestial_put(&c, swap, b + n, cap - n);
-    if (p.coverage >= 0) {
+    if (p.coverage >= 0) { /* a west wind of 10 m/s; the layer gives none of its own, so it takes this one */
+        cu_cigi_enc_atmosphere atm = { .model_enable = 0, .wind_speed = 10, .wind_dir = 270, .visibility = 50000 };
+        n += cu_cigi_enc_atmosphere_put(&atm, swap, b + n, cap - n);
         cu_cigi_enc_weather w = { .layer_id = 1, .enable = 1, .cloud_type = 7, .scope = 0,
                                   .coverage = (float)(100 * p.coverage), .base = (float)(alt0 + 1200),
                                   .thickness = 1500, .visibility = 50000 };

@@ -25,7 +25,7 @@ if command -v tshark >/dev/null 2>&1; then
 fi
 
 $C ig $SCENE --input "cigi:127.0.0.1:$P,host=127.0.0.1:$Q" --size ${W}x$H --set camera.fov=$FOV $ORIGIN \
-   --frame-timeout 60 --trace --save "$OUT/frames" >"$OUT/ig.out" 2>"$OUT/ig.err" &
+   --frame-timeout 60 --trace --save "$OUT/frames" --dump-scene "$OUT/dumped.scene" >"$OUT/ig.out" 2>"$OUT/ig.err" &
 IG=$!
 sleep 1
 timeout 600 build/cigi_host "127.0.0.1:$P" $Q $W $H $FOV $LAT0 $LON0 $ALT0 >"$OUT/host.log" 2>"$OUT/host.err"
@@ -85,7 +85,7 @@ if [ -z "$bad" ]; then t_ok sun_follows_the_host_date_and_time; else t_fail sun_
 # mediocris; the base is above sea level, so 1200 m above the origin's 400 m); 20 % is neither.
 sun=$(field sun "$(ig_line 24)"); look="0 300.2588190451 -0.9659258263"
 { cat $SCENE; printf '[layer]\ntype = cumulus-mediocris\nbase = 1200\nthickness = 1500\ncoverage = 0.6\n'
-  printf 'extent = 20000\nseed = 1\nwind = 0 0\n'; } >"$OUT/layer.scene"
+  printf 'extent = 20000\nseed = 1\nwind = 10 0\n'; } >"$OUT/layer.scene"
 render_as "$OUT/clear.png" "0 300 0" "$look" "${sun%,*}" "${sun#*,}"
 SCENE="$OUT/layer.scene" render_as "$OUT/layer.png" "0 300 0" "$look" "${sun%,*}" "${sun#*,}"
 d0=$(build/png_diff "$OUT/clear.png" "$(frame_png 13)" 1); r0=$?
@@ -94,6 +94,15 @@ d2=$(build/png_diff "$OUT/layer.png" "$(frame_png 14)" 1); r2=$?
 d02=$(build/png_diff "$OUT/clear.png" "$(frame_png 14)" 1); r02=$?
 if [ $r0 -eq 0 ] && [ $r6 -eq 0 ] && [ $r2 -eq 1 ] && [ $r02 -eq 1 ]; then t_ok coverage_0_to_60_draws_the_scene_file_layer
 else t_fail coverage_0_to_60_draws_the_scene_file_layer "0 %: $d0 (exit $r0); 60 %: $d6 (exit $r6); 20 % against 60 %: $d2, against clear: $d02"; fi
+
+# The scene the IG drew last (--dump-scene): the file's, with the host's layer, whose wind is the global west wind of
+# 10 m/s (Atmosphere Control) blowing toward the east.
+lay=$(sed -n '/^\[layer\]/,$p' "$OUT/dumped.scene")
+case "$lay" in *"type = cumulus-mediocris"*"base = 1200.000"*"coverage = 0.600000"*"wind = 10.0000 "*)
+  w_n=$(printf '%s\n' "$lay" | sed -n 's/^wind = [^ ]* //p')
+  if awk -v n="$w_n" 'BEGIN { exit !(n < 1e-3 && n > -1e-3) }'; then t_ok dumped_scene_has_the_host_layer_and_wind
+  else t_fail dumped_scene_has_the_host_layer_and_wind "north wind $w_n"; fi ;;
+  *) t_fail dumped_scene_has_the_host_layer_and_wind "'$lay'" ;; esac
 
 # Hostile datagrams (host frames 20-24): each kind counted, none applied, the frames after them drawn as meant.
 stats=$(grep '^\[ig\] cigi:' "$OUT/ig.out")
