@@ -65,14 +65,36 @@ kiosk() {
 kiosk drm_atomic atomic
 kiosk drm_legacy legacy CUMULO_DRM_LEGACY=1
 
-# SIGTERM mid-run, with a look at the screen first: the scanned-out buffer against the headless render.
+# SIGTERM mid-run while the sun is turned, with a look at the screen first. Without --frames the kiosk draws only when
+# something changed (an idle kiosk leaves its last flip on screen): the first frame sets the mode (no event), then
+# nothing is drawn until a sun command comes on stdin; two of them (away and back) each draw a frame, a flip the
+# kernel counts, and the screen ends with the scene's own sun, compared below with the headless render.
 hold_start
 flips_reset
 rm -f $F/term.fifo; mkfifo $F/term.fifo
 $C run $S --platform drm --mode $MODE --set $Q <$F/term.fifo >$OUT/term.out 2>$OUT/term.err &
 pid=$!
 exec 6>$F/term.fifo
-i=0; while [ $i -lt 1200 ] && [ "$(flips)" -lt 2 ] && kill -0 $pid 2>/dev/null; do sleep 0.1; i=$((i + 1)); done
+# wait_flips N SECONDS: 0 once the kernel delivered N flip events to a client.
+wait_flips() {
+  _end=$(( $(now) + $2 ))
+  while [ "$(now)" -le $_end ] && [ "$(flips)" -lt "$1" ] && kill -0 $pid 2>/dev/null; do sleep 0.5; done
+  [ "$(flips)" -ge "$1" ]
+}
+# The first frame is on screen once the loop answers `status` past it (frames counts presented frames).
+end=$(( $(now) + 600 ))
+while [ "$(now)" -le $end ] && kill -0 $pid 2>/dev/null && ! grep -q '^status .* frames=[1-9]' $OUT/term.out; do
+  echo status >&6; sleep 5
+done
+echo "drm: first frame of the idle kiosk after $(elapsed) s"
+sleep 3  # an idle kiosk: nothing changed, so nothing is drawn and nothing flips
+n=$(flips)
+if grep -q '^status .* frames=[1-9]' $OUT/term.out && [ "$n" -eq 0 ]; then t_ok drm_idle_kiosk_flips_nothing
+else t_fail drm_idle_kiosk_flips_nothing "$n flip events with nothing changed; $(tail -1 $OUT/term.out)"; fi
+echo "azimuth 140" >&6
+wait_flips 1 600
+echo "azimuth 135" >&6
+wait_flips 2 600
 $H/vm_kms snap $OUT/screen.ppm $CARD
 snap=$?
 kill -TERM $pid
@@ -80,9 +102,10 @@ wait $pid; rc=$?
 exec 6>&-
 cat $OUT/term.err
 n=$(flips)
-if [ $rc -eq 0 ] && grep -q 'terminated, stopping' $OUT/term.err && grep -q '^\[run\] ' $OUT/term.out && [ "$n" -ge 2 ]
+if [ $rc -eq 0 ] && grep -q 'terminated, stopping' $OUT/term.err && grep -q '^\[run\] .* drawn=3$' $OUT/term.out &&
+   [ "$n" -eq 2 ]
 then t_ok drm_sigterm_mid_run_clean_exit
-else t_fail drm_sigterm_mid_run_clean_exit "exit $rc after $n flips: $(tail -2 $OUT/term.err)"; fi
+else t_fail drm_sigterm_mid_run_clean_exit "exit $rc after $n flips: $(tail -1 $OUT/term.out) $(tail -2 $OUT/term.err)"; fi
 hold_check drm_sigterm_crtc_restored
 
 t=$(elapsed)
