@@ -7,7 +7,8 @@
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
 // inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
 // model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
-// clouds shade this one: their optical depth along the sun, pass_shadow.c).
+// clouds shade this one: their optical depth along the sun, pass_shadow.c), METHOD_UNIFORM (the mainstream uniform
+// ray march instead of Kol's segments: UNIFORM_STEPS along the view, UNIFORM_SUN_STEPS toward the sun at each).
 //
 // Precision: everything is highp. Positions and distances are cloud-local metres (hundreds to thousands), optical
 // depths reach hundreds: fp16 (mediump on Mali/V3D) has 11 bits and would lose both. Colours would survive mediump,
@@ -17,6 +18,9 @@
 #endif
 #ifndef EXT_SHADOW
 #define EXT_SHADOW 0
+#endif
+#ifndef METHOD_UNIFORM
+#define METHOD_UNIFORM 0
 #endif
 #include "density.glsl"
 #include "sunmap.glsl"
@@ -157,9 +161,9 @@ float ext_diffuse(vec3 p)
 }
 #endif
 
-vec3 source(vec3 p, float ke, vec3 ph0)
+// The same for a sample whose (delta-M scaled) optical depth toward the sun is ts.
+vec3 source_from(float ts, vec3 ph0)
 {
-    float ts = (sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE;
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
     float ao = 1.0;
@@ -170,6 +174,68 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 #endif
     return S;
 }
+
+vec3 source(vec3 p, float ke, vec3 ph0)
+{
+    return source_from((sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE, ph0);
+}
+
+#if METHOD_UNIFORM && !ENERGY_PASS
+// The mainstream method (Schneider's Nubis, Hillaire's Frostbite, Unreal): the trade study's baseline. No sun maps:
+// the optical depth toward the sun is marched at every sample to the edge of the cloud's bounding sphere, in
+// UNIFORM_SUN_STEPS steps growing geometrically (short near the sample, where the light's attenuation is resolved
+// first), midpoint rule. The ratio 1 + 4 / M (3 for two steps, 2 for four, 1.125 for 32) lets the longest step shrink
+// as M grows, so the march converges; a fixed ratio of 2 would leave half the path to one sample.
+const float SUN_RATIO = 1.0 + 4.0 / float(UNIFORM_SUN_STEPS);
+float sun_march(vec3 p)
+{
+    float b = dot(p, u_sun_dir), c = dot(p, p) - u_bound_R * u_bound_R;
+    float len = sqrt(max(b * b - c, 0.0)) - b;
+    if (len <= 0.0)
+        return 0.0;
+    float x = len * (SUN_RATIO - 1.0) / (pow(SUN_RATIO, float(UNIFORM_SUN_STEPS)) - 1.0), s = 0.0, tau = 0.0;
+    for (int j = 0; j < UNIFORM_SUN_STEPS; j++) {
+        tau += x * extinction_anywhere(p + u_sun_dir * (s + 0.5 * x));
+        s += x;
+        x *= SUN_RATIO;
+    }
+    return tau;
+}
+
+// UNIFORM_STEPS steps of equal length from the ray's first entry into the cloud to its last exit (or the host's
+// surface), jittered per pixel, each step's source held constant and its attenuation integrated exactly (Hillaire
+// 2016): single scattering through the scene's phase function, octaves for multiple scattering (MS_MODE 1), the same
+// isotropic sky and ground light as Kol's intervals. Ends when the delta-M transmittance is below e^-12.
+void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, inout vec3 L, inout vec3 amb)
+{
+    float a = hit_t0[0], b = hit_t1[0];
+    for (int k = 1; k < n_hits; k++)
+        b = max(b, hit_t1[k]);
+    b = min(b, t_end);
+    if (b <= a)
+        return;
+    float dt = (b - a) / float(UNIFORM_STEPS);
+    // interleaved gradient noise (Jimenez 2014): a fixed offset per pixel, so a still picture is stable
+    float jit = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    vec3 J = mix(u_ground_rad, u_sky_rad, 0.5);
+    float taup = 0.0;
+    for (int i = 0; i < UNIFORM_STEPS; i++) {
+        float t = a + (float(i) + jit) * dt;
+        vec3 p = ro + dir * t;
+        float ke = extinction(p, t);
+        if (ke <= 0.0)
+            continue;
+        float dtau = ke * dt;
+        vec3 S = source_from((sun_march(p) + ext_tau(p)) * DM_SCALE, ph0);
+        L += exp(-taup) * S * (1.0 - exp(-DM_SCALE * dtau)) / DM_SCALE;
+        amb += exp(-tau) * (1.0 - exp(-dtau)) * J;
+        tau += dtau;
+        taup += DM_SCALE * dtau;
+        if (taup > 12.0)
+            break;
+    }
+}
+#endif
 
 #if MS_MODE >= 2
 // Multiple scattering (orders 2..16+) leaving the cloud at p toward the eye, per unit sun irradiance: Bouthors' slab
@@ -279,6 +345,10 @@ void main()
 #endif
     int k = 0, intervals = 0;
     float ext_first = 0.0; // other clouds' optical depth toward the sun where the ray enters this one
+#if METHOD_UNIFORM && !ENERGY_PASS
+    ext_first = ext_tau(ro + dir * hit_t0[0]);
+    march_uniform(ro, dir, t_end, ph0, tau, L, amb);
+#else
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
         float a, b;
@@ -358,6 +428,7 @@ void main()
 #endif
         amb += exp(-tau0) * (1.0 - exp(-(tau - tau0))) * mix(u_ground_rad, u_sky_rad, w_sky);
     }
+#endif
 #if PHASE_PEAK && !ENERGY_PASS
     // The removed peak (Kol eqs. 3.66-3.69): light scattered into the forward peak and still on the beam. With the
     // delta-M extinction (1 - f) k_e of the chopped medium that is e^(-(1-f) tau) - e^(-tau), spread over angles as

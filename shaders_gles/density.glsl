@@ -63,15 +63,9 @@ int n_hits;
 int hit_idx[NUM_ELL];
 float hit_t0[NUM_ELL], hit_t1[NUM_ELL];
 
-// Extinction at p = ray(t): the distance to the union is the max over ellipsoids, and only ellipsoids whose chord
-// contains t can be non-negative there, so the loop runs over the hit list, skipping chords that end before t.
-float extinction(vec3 p, float t)
+// Extinction at signed distance d from the union's surface (positive inside): the core, the noisy boundary, air.
+float extinction_at_distance(vec3 p, float d)
 {
-    float d = -1e30;
-    for (int k = 0; k < n_hits; k++) {
-        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3)
-            d = max(d, radial_distance(p, hit_idx[k]));
-    }
     if (d <= 0.0)
         return 0.0;
     if (d >= u_h)
@@ -88,6 +82,29 @@ float extinction(vec3 p, float t)
     return u_ke * sigmoid(u + 4.0 * u * (1.0 - u) * n);  // noise tapered to 0 at both borders: continuous density
 #endif
 }
+
+// Extinction at p = ray(t): the distance to the union is the max over ellipsoids, and only ellipsoids whose chord
+// contains t can be non-negative there, so the loop runs over the hit list, skipping chords that end before t.
+float extinction(vec3 p, float t)
+{
+    float d = -1e30;
+    for (int k = 0; k < n_hits; k++) {
+        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3)
+            d = max(d, radial_distance(p, hit_idx[k]));
+    }
+    return extinction_at_distance(p, d);
+}
+
+#if defined(METHOD_UNIFORM) && METHOD_UNIFORM
+// Extinction anywhere, not only on the cast ray's chords: the uniform march's steps toward the sun leave the ray.
+float extinction_anywhere(vec3 p)
+{
+    float d = -1e30;
+    for (int i = 0; i < NUM_ELL; i++)
+        d = max(d, radial_distance(p, i));
+    return extinction_at_distance(p, d);
+}
+#endif
 
 // Knots of the quadrature over an in-cloud interval [a, a + len] with n segments. The boundary ramps (density rising
 // over h at each end) get segments of their own, in proportion to their length but at least one: the ramp/core

@@ -35,7 +35,7 @@ $(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIB
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
 # gpu: renders through both headless back ends against references, closed forms and the CPU.
-$(foreach t,render extremes sunmap ms fallback field,\
+$(foreach t,render extremes sunmap ms fallback field uniform,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # The extremes matrix of every key's range, through the GPU renderer and the path tracer.

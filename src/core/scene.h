@@ -48,6 +48,7 @@ typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MI
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
 typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_SLAB, CU_MS_COLLECTOR } cu_ms_mode;
 typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
+typedef enum cu_method { CU_METHOD_KOL, CU_METHOD_UNIFORM } cu_method;
 typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, CU_SHADOW_FOM } cu_shadow_method;
 
 struct cu_scene {
@@ -106,6 +107,10 @@ struct cu_scene {
     int cloud_shadows;        /* 0/1: clouds shade each other and the ground */
     int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
     int preset;               /* cu_preset: high (the defaults), medium, low (presets.c) */
+    cu_method method;         /* kol: analytic chords, few log-spaced segments, sun maps; uniform: the mainstream
+                                 ray march (N uniform jittered steps, M steps toward the sun at each), the baseline */
+    int uniform_steps;        /* method = uniform: steps along the view ray through the cloud */
+    int uniform_sun_steps;    /* method = uniform: steps toward the sun from each sample */
     /* [light] */
     cu_shadow_method shadow;
     int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */

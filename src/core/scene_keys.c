@@ -16,6 +16,7 @@ static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 static const char *const integration_names[] = {"exponential", "kol", NULL};
+static const char *const method_names[] = {"kol", "uniform", NULL}; /* in cu_method order (scene.h) */
 static const char *const layer_type_names[] = {"cumulus-humilis", "cumulus-mediocris", "cumulus-congestus",
                                                NULL}; /* in cu_cumulus_type order (layer.h) */
 static const char *const preset_names[] = {"high", "medium", "low", NULL}; /* in cu_preset order (presets.h) */
@@ -141,6 +142,17 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",
          "segment integration: exponential (energy-conserving) or kol (Kol's trapezoids, eq. 3.20)", S(integration)),
+    ENUM("quality", "method", method_names, "kol",
+         "how a pixel's ray is marched: kol (analytic chords, quality.segments log-spaced segments, sun maps) or "
+         "uniform (the mainstream ray march: uniform_steps jittered steps, uniform_sun_steps toward the sun at each; "
+         "the trade study's baseline; its multiple scattering is octaves unless ms.mode = none)",
+         S(method)),
+    /* steps are loop counts: 4..512 along the view, 1..32 toward the sun (the sun march's ratio 1 + 4/M: (1 + 4)^1 ..
+     * 1.125^32 = 43, all finite in fp32) */
+    INT("quality", "uniform_steps", 1, "64", 4, 512, 0, "", "method = uniform: steps along the view ray through the "
+        "cloud", S(uniform_steps)),
+    INT("quality", "uniform_sun_steps", 1, "6", 1, 32, 0, "", "method = uniform: steps toward the sun from each "
+        "sample, each 1 + 4 / uniform_sun_steps times the last", S(uniform_sun_steps)),
     ENUM("quality", "preset", preset_names, "high",
          "the sweep's presets (src/core/presets.c; high: the defaults); keys set in the file or by --set win",
          S(preset)),

@@ -75,6 +75,11 @@ static int map_size_for(const cu_renderer *r, double pixels)
 static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
+    if (r->scene.method == CU_METHOD_UNIFORM) { /* it marches toward the sun at every sample: no maps to make */
+        if (!sl->vao)
+            cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
+        return 0;
+    }
     if (cloud_objects(r, sl, err))
         return 1;
     double c = v3_dot(sl->maps_sun, ctx->sky->sun_dir);

@@ -17,6 +17,13 @@ static int slab_on(int ms_mode)
 int cu_pass_slab_load(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *dir, int *ms_mode, cu_error *err)
 {
     *ms_mode = ctx->scene->ms_mode;
+    if (ctx->scene->method == CU_METHOD_UNIFORM && slab_on(*ms_mode)) {
+        /* the slab model fits a slab at each of Kol's intervals' entries; a uniform march has no intervals */
+        cu_gpu_log(ctx, CU_LOG_INFO, "quality.method = uniform: multiple scattering by octaves (ms.mode = %s works on "
+                                     "Kol's intervals)", *ms_mode == CU_MS_SLAB ? "slab" : "collector");
+        *ms_mode = CU_MS_OCTAVES;
+        return 0;
+    }
     if (!slab_on(*ms_mode))
         return 0;
     if (!ctx->half_rt) {

@@ -138,7 +138,7 @@ void cu_renderer_destroy(cu_renderer *r)
 /* The shader variant of the scene: only what it uses is compiled, counts and features as constants. Full-screen
  * (FULLSCREEN 1) and hull programs differ in how a fragment finds its ray; LINEAR_OUTPUT picks the tone map's copy. */
 typedef struct shader_defs {
-    char hull[1500], fs[1500], linear[1500];
+    char hull[1800], fs[1800], linear[1800];
 } shader_defs;
 
 /* far = 1: the far level of detail of a field's clouds, small on screen: one segment fewer (at least 2) and two noise
@@ -149,20 +149,22 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
 {
     const cu_scene *s = &r->scene;
     const cu_gpu_scene *c = &r->ctx;
-    char defs[1400];
+    char defs[1700];
     int n = snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
              "#define NOISE_OCTAVES %d\n#define PROFILE_KOL %d\n#define MS_MODE %d\n#define MS_OCTAVES %d\n"
              "#define SKY_CONSTANT %d\n#define PHASE_PEAK %d\n#define SHADOW_PEEL %d\n#define SUN_INTERVALS %d\n"
              "#define SUN_FILTER %d\n#define SUN_SAMPLES %d\n#define INTEGRATION_KOL %d\n"
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n#define EXT_SHADOW %d\n"
-             "#define GROUND_SHADOW %d\n",
+             "#define GROUND_SHADOW %d\n#define METHOD_UNIFORM %d\n#define UNIFORM_STEPS %d\n"
+             "#define UNIFORM_SUN_STEPS %d\n",
              c->num_ell, far && s->segments > 2 ? s->segments - 1 : s->segments,
              s->max_intervals, s->noise ? 1 : 0, far ? (s->noise_octaves > 2 ? 2 : 1) : s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
              s->sky_model == CU_SKY_CONSTANT, s->phase == CU_PHASE_MIE, c->shadow == CU_SHADOW_PEEL, s->sun_intervals,
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
-             r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT);
+             r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
+             s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps);
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");

@@ -1,6 +1,7 @@
 /* tests/gpu/render_util.c: headless rendering and image comparison helpers for the tests (see render_util.h). */
 #include "render_util.h"
 #include "image.h"
+#include "scene.h"
 #include <GLES3/gl3.h>
 #include <math.h>
 #include <stdio.h>
@@ -134,4 +135,19 @@ void tr_save_failure(const char *name, const uint8_t *got, const uint8_t *ref, i
             fprintf(stderr, "tr_save_failure: %s\n", err.msg); /* the test fails anyway; say why the picture is missing */
     }
     free(diff);
+}
+
+/* Direction through the centre of pixel (x, y) (y = 0 at the top), as the renderer's camera defines it. */
+vec3 tr_pixel_dir(const cu_scene *s, int w, int h, int x, int y)
+{
+    vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
+    mat4 view = m4_look_dir(v3(0, 0, 0), dir, v3(0, 1, 0));
+    mat4 proj = m4_perspective(s->cam_fov * CU_PI / 180.0, (double)w / h, 1.0, 1000.0);
+    mat4 inv = m4_inverse(m4_mul(proj, view));
+    double nx = (x + 0.5) / w * 2 - 1, ny = 1 - (y + 0.5) / h * 2;
+    double c[4] = {nx, ny, 1, 1}, o[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 4; k++)
+            o[i] += inv.m[k * 4 + i] * c[k];
+    return v3_norm(v3(o[0] / o[3], o[1] / o[3], o[2] / o[3]));
 }

@@ -5,6 +5,7 @@
 #include "cumulo.h"
 #include "display.h"
 #include "session.h"
+#include "vecmath.h"
 #include <stdint.h>
 
 extern const cu_display_backend cu_display_egl;
@@ -30,6 +31,9 @@ int tr_render_again(tr_ctx *c);
 int tr_read_rgbf(tr_ctx *c, float *rgb);      /* top row first, w*h*3 */
 int tr_read_rgba8(tr_ctx *c, uint8_t *rgba);  /* top row first, w*h*4 */
 void tr_close(tr_ctx *c);
+/* Direction through the centre of pixel (x, y) of a w x h frame (y = 0 at the top) from the scene's camera, as the
+ * renderer defines it. */
+vec3 tr_pixel_dir(const cu_scene *s, int w, int h, int x, int y);
 
 typedef struct tr_diff {
     int max_diff;        /* max per-channel difference, 0..255 */

@@ -27,21 +27,6 @@ static const char *const backend_names[] = {"egl", "osmesa"};
     "[ms]\nsky_light = off\n"                     \
     "[ellipsoid]\ncenter = 0 250 0\nradii = 200 120 160\n"
 
-/* Direction through the centre of pixel (x, y) (y = 0 at the top), as the renderer's camera defines it. */
-static vec3 pixel_dir(const cu_scene *s, int w, int h, int x, int y)
-{
-    vec3 dir = v3_norm(v3_sub(v3_from(s->cam_look), v3_from(s->cam_pos)));
-    mat4 view = m4_look_dir(v3(0, 0, 0), dir, v3(0, 1, 0));
-    mat4 proj = m4_perspective(s->cam_fov * CU_PI / 180.0, (double)w / h, 1.0, 1000.0);
-    mat4 inv = m4_inverse(m4_mul(proj, view));
-    double nx = (x + 0.5) / w * 2 - 1, ny = 1 - (y + 0.5) / h * 2;
-    double c[4] = {nx, ny, 1, 1}, o[4] = {0, 0, 0, 0};
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 4; k++)
-            o[i] += inv.m[k * 4 + i] * c[k];
-    return v3_norm(v3(o[0] / o[3], o[1] / o[3], o[2] / o[3]));
-}
-
 /* Length of the union of the chords of a ray through a set of ellipsoids. */
 static double union_chord(const cu_scene *s, vec3 o, vec3 d)
 {
@@ -87,7 +72,7 @@ static void check_beer(const char *scene_text, int be_index, double *max_err_out
     int edge = 0, covered = 0;
     for (int y = 0; y < 120; y++)
         for (int x = 0; x < 160; x++) {
-            vec3 d = pixel_dir(s, 160, 120, x, y);
+            vec3 d = tr_pixel_dir(s, 160, 120, x, y);
             double L = union_chord(s, v3_from(s->cam_pos), d);
             double T = exp(-ke * L);
             double got = px[(y * 160 + x) * 3 + 1];
@@ -429,7 +414,7 @@ static void test_glory_and_fogbow(void **st)
     int cnt[361] = {0};
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            vec3 d = pixel_dir(s, W, H, x, y);
+            vec3 d = tr_pixel_dir(s, W, H, x, y);
             /* cos(Theta) = s_L . v with s_L = -sun, v = -d (from the sample toward the eye) */
             double th = acos(fmax(-1.0, fmin(1.0, v3_dot(sun, d)))) * 180.0 / CU_PI;
             int b = (int)(th * 2.0);
