@@ -22,11 +22,19 @@ float sample_level(vec3 t, int level)
     return textureLod(u_noise, t, float(level)).r;
 }
 
-// Kol eq. 3.74: five LODs at p and at 8p, each sum minus 0.75, clamped to [0,1], mapped to [-1,1].
+// Kol eq. 3.74: five LODs at p and at 8p, each sum minus 0.75, clamped to [0,1], mapped to [-1,1]. NOISE_BAKED
+// (quality.noise_baked): u_noise holds the octaves' weighted sum in one level (src/core/noise.c: cu_noise_bake), read
+// at p and 8p.
+#ifndef NOISE_BAKED
+#define NOISE_BAKED 0
+#endif
 float fractal_noise(vec3 p)
 {
     vec3 t = p * u_noise_freq + u_noise_offset;
-    float a = -1.5, b;
+#if NOISE_BAKED
+    float a = textureLod(u_noise, t, 0.0).r + textureLod(u_noise, 8.0 * t, 0.0).r - 1.5;
+#else
+    float a = -1.5;
     const float w[5] = float[5](0.015, 0.035, 0.1, 0.35, 1.5);
     for (int L = 0; L < 5; L++) {
         if (L < 5 - NOISE_OCTAVES) {
@@ -35,8 +43,8 @@ float fractal_noise(vec3 p)
             a += w[L] * (sample_level(t, L) + sample_level(8.0 * t, L));
         }
     }
-    b = clamp(a, 0.0, 1.0);
-    return b * 2.0 - 1.0;
+#endif
+    return clamp(a, 0.0, 1.0) * 2.0 - 1.0;
 }
 
 // Kol's radial signed distance (positive inside): d = |q| (1/s - 1) with s = |q / r|. Finite at the centre.

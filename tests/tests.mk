@@ -31,6 +31,8 @@ $(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB
 $(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIBS)))
 # Generated cumulus layers: coverage, the size distribution's exponent, no overlap, determinism.
 $(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
+# quality.noise_baked's CPU twin against the fractal noise it stands in for.
+$(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 

@@ -130,24 +130,34 @@ void cu_noise_destroy(cu_noise *n)
 
 static int wrap(int i, int n) { return ((i % n) + n) % n; }
 
-double cu_noise_sample(const cu_noise *n, int level, double u, double v, double w)
+/* Texel (x, y, z) of an s^3 grid, x fastest: bytes (the noise's levels) or floats (the baked grid). */
+static double texel(const void *d, int is_float, int s, int x, int y, int z)
 {
-    int s = CU_NOISE_SIZE >> level;
-    const uint8_t *d = n->level[level];
-    /* GL texel centres are at (i + 0.5)/s. */
+    size_t i = ((size_t)z * s + y) * s + x;
+    return is_float ? (double)((const float *)d)[i] : (double)((const uint8_t *)d)[i];
+}
+
+/* GL_LINEAR with GL_REPEAT on an s^3 grid at texture coordinates (u, v, w): texel centres at (i + 0.5) / s. */
+static double trilinear(const void *d, int is_float, int s, double u, double v, double w)
+{
     double x = u * s - 0.5, y = v * s - 0.5, z = w * s - 0.5;
     double fx0 = floor(x), fy0 = floor(y), fz0 = floor(z);
     double fx = x - fx0, fy = y - fy0, fz = z - fz0;
     int x0 = wrap((int)fmod(fx0, s), s), y0 = wrap((int)fmod(fy0, s), s), z0 = wrap((int)fmod(fz0, s), s);
     int x1 = (x0 + 1) % s, y1 = (y0 + 1) % s, z1 = (z0 + 1) % s;
-#define T(X, Y, Z) ((double)d[((Z) * s + (Y)) * s + (X)])
+#define T(X, Y, Z) texel(d, is_float, s, X, Y, Z)
     double c00 = T(x0, y0, z0) + fx * (T(x1, y0, z0) - T(x0, y0, z0));
     double c10 = T(x0, y1, z0) + fx * (T(x1, y1, z0) - T(x0, y1, z0));
     double c01 = T(x0, y0, z1) + fx * (T(x1, y0, z1) - T(x0, y0, z1));
     double c11 = T(x0, y1, z1) + fx * (T(x1, y1, z1) - T(x0, y1, z1));
 #undef T
     double c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-    return (c0 + fz * (c1 - c0)) / 255.0;
+    return c0 + fz * (c1 - c0);
+}
+
+double cu_noise_sample(const cu_noise *n, int level, double u, double v, double w)
+{
+    return trilinear(n->level[level], 0, CU_NOISE_SIZE >> level, u, v, w) / 255.0;
 }
 
 double cu_noise_fractal(const cu_noise *n, const double p[3], int octaves)
@@ -164,6 +174,33 @@ double cu_noise_fractal(const cu_noise *n, const double p[3], int octaves)
         }
         total += sum - 0.75;
     }
+    if (total < 0) total = 0;
+    if (total > 1) total = 1;
+    return total * 2.0 - 1.0;
+}
+
+void cu_noise_bake(const cu_noise *n, int octaves, float *out)
+{
+    if (octaves < 1) octaves = 1;
+    if (octaves > CU_NOISE_OCTAVES) octaves = CU_NOISE_OCTAVES;
+    const int s = CU_NOISE_SIZE;
+    double dropped = 0; /* the levels switched off, at their mean (as cu_noise_fractal) */
+    for (int L = 0; L < CU_NOISE_OCTAVES - octaves; L++)
+        dropped += cu_noise_weights[L] * n->level_mean[L];
+    for (int z = 0; z < s; z++)
+        for (int y = 0; y < s; y++)
+            for (int x = 0; x < s; x++) {
+                double u = (x + 0.5) / s, v = (y + 0.5) / s, w = (z + 0.5) / s, sum = dropped;
+                for (int L = CU_NOISE_OCTAVES - octaves; L < CU_NOISE_OCTAVES; L++)
+                    sum += cu_noise_weights[L] * cu_noise_sample(n, L, u, v, w);
+                out[((size_t)z * s + y) * s + x] = (float)sum;
+            }
+}
+
+double cu_noise_fractal_baked(const float *baked, const double p[3])
+{
+    const int n = CU_NOISE_SIZE;
+    double total = trilinear(baked, 1, n, p[0], p[1], p[2]) + trilinear(baked, 1, n, 8 * p[0], 8 * p[1], 8 * p[2]) - 1.5;
     if (total < 0) total = 0;
     if (total > 1) total = 1;
     return total * 2.0 - 1.0;

@@ -102,6 +102,7 @@ struct cu_scene {
     int max_intervals;        /* merged in-cloud intervals per pixel */
     int noise;                /* 0/1 */
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
+    int noise_baked;          /* 0/1: the octaves' weighted sum baked into one 64^3 texture (2 reads, not 10) */
     int sun_map_size;         /* texels per side */
     int lod_pixels;           /* a field's clouds smaller on screen than this get the far level of detail */
     int cloud_shadows;        /* 0/1: clouds shade each other and the ground */

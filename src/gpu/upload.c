@@ -3,12 +3,30 @@
 #include "error.h"
 #include <stdlib.h>
 
-void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n)
+void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves)
 {
     const cu_gl *gl = ctx->gl;
     gl->GenTextures(1, &ctx->noise_tex);
     gl->BindTexture(GL_TEXTURE_3D, ctx->noise_tex);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_REPEAT);
+    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    float *baked = baked_octaves > 0 ? malloc(sizeof(float) * CU_NOISE_SIZE * CU_NOISE_SIZE * CU_NOISE_SIZE) : NULL;
+    if (baked) {
+        /* quality.noise_baked: the octaves' weighted sum at level 0 (cu_noise_bake), R16F (filterable in GLES 3.0;
+         * values in [0, 2] keep 11 bits); the shader reads it twice (density.glsl, NOISE_BAKED) */
+        cu_noise_bake(n, baked_octaves, baked);
+        gl->TexImage3D(GL_TEXTURE_3D, 0, GL_R16F, CU_NOISE_SIZE, CU_NOISE_SIZE, CU_NOISE_SIZE, 0, GL_RED, GL_FLOAT,
+                       baked);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
+        free(baked);
+        return;
+    }
+    if (baked_octaves > 0) /* out of memory for the bake: the mip chain below, which the same shader cannot read */
+        cu_gpu_log(ctx, CU_LOG_ERROR, "noise: out of memory baking the octaves");
     for (int L = 0; L < CU_NOISE_LEVELS; L++) {
         int s = CU_NOISE_SIZE >> L;
         gl->TexImage3D(GL_TEXTURE_3D, L, GL_R8, s, s, s, 0, GL_RED, GL_UNSIGNED_BYTE, n->level[L]);
@@ -16,10 +34,6 @@ void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n)
     /* Our own box-filtered levels (not glGenerateMipmap) so the CPU twin samples the same bytes. LINEAR within a
      * level, NEAREST between levels: the shader always asks for whole LODs (eq. 3.74). */
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_REPEAT);
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, CU_NOISE_LEVELS - 1);
 }
 

@@ -146,6 +146,7 @@ void config_high(config *c)
 {
     for (int k = 0; k < SW_NKNOBS; k++)
         c->v[k] = sw_knobs[k].high;
+    c->extra[0] = 0;
 }
 
 /* All keys given explicitly, so a view's own quality lines do not leak in; quality.noise stays the view's choice
@@ -167,6 +168,12 @@ int config_sets(const config *c, char sets[][64], double *scale)
                 snprintf(sets[n++], 64, "cloud.g=%s", MIE_G);
         }
     }
+    for (const char *p = c->extra; *p && n < SW_MAX_SETS;) { /* the extra settings, after the knobs' */
+        size_t len = strcspn(p, ";");
+        if (len > 0 && len < 64)
+            snprintf(sets[n++], 64, "%.*s", (int)len, p);
+        p += len + (p[len] == ';');
+    }
     return n;
 }
 
@@ -181,6 +188,11 @@ void config_diff(const config *c, char *out, size_t len, const char *sep)
                 name = "quality.noise"; /* the key it sets */
             n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%s=%s", n ? sep : "", name, val);
         }
+    for (const char *p = c->extra; *p;) {
+        size_t l = strcspn(p, ";");
+        n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%.*s", n ? sep : "", (int)l, p);
+        p += l + (p[l] == ';');
+    }
     if (n == 0)
         snprintf(out, len, "high");
 }

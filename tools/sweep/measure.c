@@ -151,7 +151,7 @@ static int time_view(sweep *sw, view *v, const config *cfg, int n, result *res)
 }
 
 /* The error half: every configuration rendered linear at the error size (scaled ones upsampled) and compared. */
-static int error_view(sweep *sw, view *v, const config *cfg, int n, result *res)
+int sw_error_view(sweep *sw, view *v, const config *cfg, int n, result *res, float *first)
 {
     cli_opts o = {0};
     o.scene_path = v->path;
@@ -192,17 +192,24 @@ static int error_view(sweep *sw, view *v, const config *cfg, int n, result *res)
         cu_renderer_destroy(r);
         if (rc)
             break;
+        const float *full = img;
         if (w != sw->ew || h != sw->eh) {
             sw_upsample(img, w, h, up, sw->ew, sw->eh);
-            sw_compare(sw, v, up, &res[i]);
-        } else {
-            sw_compare(sw, v, img, &res[i]);
+            full = up;
         }
+        sw_compare(sw, v, full, &res[i]);
+        sw_cloud_metrics(sw, v, full, &res[i]);
+        if (i == 0 && first)
+            memcpy(first, full, sizeof(float) * 3 * npx);
         res[i].ok = 1;
         char d[512];
         config_diff(&cfg[i], d, sizeof d, " ");
-        printf("sweep: %-14s %-40s %8.1f ms %6.3fx  relRMSE %.4f  PSNR %5.1f dB  visible %5.1f%%\n", v->name, d,
+        printf("sweep: %-14s %-40s %8.1f ms %6.3fx  relRMSE %.4f  PSNR %5.1f dB  visible %5.1f%%", v->name, d,
                res[i].time_ms, res[i].time_ratio, res[i].rel_rmse, res[i].psnr, res[i].visible);
+        if (v->mask)
+            printf("  cloud relRMSE %.4f  contrast %.2f (PT %.2f)  SSIM %.3f", res[i].cloud_rel_rmse,
+                   res[i].contrast, v->ref_contrast, res[i].ssim);
+        printf("\n");
         fflush(stdout);
     }
     free(img);
@@ -214,7 +221,7 @@ static int error_view(sweep *sw, view *v, const config *cfg, int n, result *res)
 
 int sw_measure_view(sweep *sw, view *v, const config *cfg, int n, result *res)
 {
-    return time_view(sw, v, cfg, n, res) || error_view(sw, v, cfg, n, res);
+    return time_view(sw, v, cfg, n, res) || sw_error_view(sw, v, cfg, n, res, NULL);
 }
 
 int sw_measure_config(sweep *sw, const config *c, const char *kind, const char *label, result *agg)

@@ -107,3 +107,155 @@ void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg
     }
     agg->ok = 1;
 }
+
+/* ---- where the light is: the cloud's pixels, contrast and structure (cumulo-sweep --methods) ---- */
+
+static double luminance(const float *p)
+{
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/* The luminance of img after a 3x3 box filter (the edge rows and columns average what they have), each channel
+ * clipped where the display curve saturates (the sun disk) as in sw_compare. */
+static void box3_luminance(const sweep *sw, const view *v, const float *img, double *out)
+{
+    int w = sw->ew, h = sw->eh;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double s = 0;
+            int n = 0;
+            for (int dy = -1; dy <= 1; dy++)
+                for (int dx = -1; dx <= 1; dx++) {
+                    int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= w || yy >= h)
+                        continue;
+                    const float *p = img + 3 * ((size_t)yy * w + xx);
+                    float c[3];
+                    for (int k = 0; k < 3; k++)
+                        c[k] = p[k] < v->clip[k] ? p[k] : (float)v->clip[k];
+                    s += luminance(c);
+                    n++;
+                }
+            out[(size_t)y * w + x] = s / n;
+        }
+}
+
+/* p90 / p10 of the filtered luminance over the mask. */
+static double contrast_of(const view *v, const double *lum, size_t npx)
+{
+    double *t = malloc(sizeof(double) * (size_t)(v->mask_n > 0 ? v->mask_n : 1));
+    if (!t)
+        return 0;
+    size_t n = 0;
+    for (size_t i = 0; i < npx; i++)
+        if (v->mask[i])
+            t[n++] = lum[i];
+    double c = 0;
+    if (n >= 10) {
+        qsort(t, n, sizeof *t, sw_cmp_double);
+        double p10 = t[(size_t)(0.1 * (double)(n - 1))], p90 = t[(size_t)(0.9 * (double)(n - 1))];
+        c = p10 > 0 ? p90 / p10 : 0;
+    }
+    free(t);
+    return c;
+}
+
+int sw_view_mask(const sweep *sw, view *v, const float *sky)
+{
+    size_t npx = (size_t)sw->ew * sw->eh;
+    free(v->mask);
+    v->mask = calloc(npx, 1);
+    double *lum = malloc(sizeof(double) * npx);
+    if (!v->mask || !lum)
+        return free(lum), fprintf(stderr, "cumulo-sweep: out of memory\n"), 1;
+    /* a pixel is the cloud's where the reference differs from the sky alone by more than 2 % of the sky in some
+     * channel (and more than the path tracer's noise could make it: 4 mean standard errors) */
+    v->mask_n = 0;
+    for (size_t p = 0; p < npx; p++) {
+        int on = 0;
+        for (int c = 0; c < 3; c++) {
+            double r = v->ref.pxf[3 * p + c], s = sky[3 * p + c];
+            if (fabs(r - s) > 0.02 * fabs(s) + 4 * v->pt_mean_se)
+                on = 1;
+        }
+        v->mask[p] = (unsigned char)on;
+        v->mask_n += on;
+    }
+    box3_luminance(sw, v, v->ref.pxf, lum);
+    v->ref_contrast = contrast_of(v, lum, npx);
+    free(lum);
+    return 0;
+}
+
+/* Mean SSIM (Wang et al. 2004: C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 255) of the two 8-bit luminances over the 7x7
+ * windows centred on mask pixels, as the screen shows them (tone-mapped with the view's exposure and white). */
+static double ssim_on_mask(const sweep *sw, const view *v, const float *img)
+{
+    int w = sw->ew, h = sw->eh;
+    size_t npx = (size_t)w * h;
+    double *a = malloc(sizeof(double) * npx), *b = malloc(sizeof(double) * npx);
+    if (!a || !b) {
+        free(a);
+        free(b);
+        return 0;
+    }
+    for (size_t p = 0; p < npx; p++) {
+        unsigned char ta[3], tb[3];
+        cu_tonemap_rgb8(img + 3 * p, v->exposure, v->white, ta);
+        cu_tonemap_rgb8(v->ref.pxf + 3 * p, v->exposure, v->white, tb);
+        a[p] = 0.299 * ta[0] + 0.587 * ta[1] + 0.114 * ta[2];
+        b[p] = 0.299 * tb[0] + 0.587 * tb[1] + 0.114 * tb[2];
+    }
+    const double C1 = (0.01 * 255) * (0.01 * 255), C2 = (0.03 * 255) * (0.03 * 255);
+    double sum = 0;
+    long n = 0;
+    for (int y = 3; y < h - 3; y++)
+        for (int x = 3; x < w - 3; x++) {
+            if (!v->mask[(size_t)y * w + x])
+                continue;
+            double ma = 0, mb = 0, saa = 0, sbb = 0, sab = 0;
+            for (int dy = -3; dy <= 3; dy++)
+                for (int dx = -3; dx <= 3; dx++) {
+                    size_t q = (size_t)(y + dy) * w + (x + dx);
+                    ma += a[q];
+                    mb += b[q];
+                    saa += a[q] * a[q];
+                    sbb += b[q] * b[q];
+                    sab += a[q] * b[q];
+                }
+            ma /= 49, mb /= 49;
+            double va = saa / 49 - ma * ma, vb = sbb / 49 - mb * mb, cov = sab / 49 - ma * mb;
+            sum += (2 * ma * mb + C1) * (2 * cov + C2) / ((ma * ma + mb * mb + C1) * (va + vb + C2));
+            n++;
+        }
+    free(a);
+    free(b);
+    return n ? sum / (double)n : 0;
+}
+
+void sw_cloud_metrics(const sweep *sw, const view *v, const float *img, result *r)
+{
+    if (!v->mask || v->mask_n == 0)
+        return;
+    size_t npx = (size_t)sw->ew * sw->eh;
+    double *li = malloc(sizeof(double) * npx), *lr = malloc(sizeof(double) * npx);
+    if (!li || !lr) {
+        free(li);
+        free(lr);
+        return;
+    }
+    box3_luminance(sw, v, img, li);
+    box3_luminance(sw, v, v->ref.pxf, lr);
+    double se = 0, m = 0;
+    for (size_t p = 0; p < npx; p++)
+        if (v->mask[p]) {
+            double d = li[p] - lr[p];
+            se += d * d;
+            m += lr[p];
+        }
+    r->cloud_rel_rmse = m > 0 ? sqrt(se / v->mask_n) / (m / v->mask_n) : 0;
+    r->contrast = contrast_of(v, li, npx);
+    r->ssim = ssim_on_mask(sw, v, img);
+    free(li);
+    free(lr);
+}

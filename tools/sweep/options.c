@@ -12,6 +12,8 @@
 
 #define DEFAULT_SCENES "cumulus,silver_lining,sweep_thick_below,glory,inside,low_sun"
 #define QUICK_SCENES "cumulus,silver_lining"
+#define METHODS_SCENES "sweep_cumulus_hg,sweep_silver_lining_hg,sweep_below_hg,sweep_low_sun_hg"
+#define METHODS_BASELINE "scenes/sweep_cumulus_hg.scene"
 
 static const char HELP[] =
     "usage: cumulo-sweep [OPTION]...\n"
@@ -40,6 +42,11 @@ static const char HELP[] =
     "  --quick              a short sweep: fewer views and knob values, smaller images, fewer frames\n"
     "  --sun-every-frame    time frames that redo the sun pass (the sun moved every frame), as `cumulo bench`\n"
     "  --refs-only          render (or find) the references and stop\n"
+    "  --methods            instead of the knobs: Kol's method (presets, segment counts) against the uniform ray\n"
+    "                       march (quality.method = uniform, 8..128 steps x 2..8 toward the sun), timed interleaved,\n"
+    "                       error on the cloud's pixels with contrast and SSIM; writes DIR/methods.md, methods.csv,\n"
+    "                       methods.dat (default views " METHODS_SCENES ",\n"
+    "                       baseline " METHODS_BASELINE ", time size 320x240)\n"
     "  -h, --help           this help, then exit\n"
     "  -V, --version        the version, then exit\n"
     "\n"
@@ -47,7 +54,7 @@ static const char HELP[] =
     "Run it from the source tree (scenes/, data/, scripts/sweep_plot.sh); `make sweep` runs it with the defaults.\n";
 
 enum { O_SCENES = 256, O_OUT, O_REFDIR, O_BASELINE, O_SIZE, O_TSIZE, O_SPP, O_PTTHREADS, O_FRAMES, O_WARMUP,
-       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY };
+       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY, O_METHODS };
 
 static const struct option LONG[] = {
     {"scenes", required_argument, NULL, O_SCENES},       {"out", required_argument, NULL, O_OUT},
@@ -57,7 +64,8 @@ static const struct option LONG[] = {
     {"frames", required_argument, NULL, O_FRAMES},       {"warmup", required_argument, NULL, O_WARMUP},
     {"threshold", required_argument, NULL, O_THRESHOLD}, {"budgets", required_argument, NULL, O_BUDGETS},
     {"quick", no_argument, NULL, O_QUICK},               {"sun-every-frame", no_argument, NULL, O_SUN},
-    {"refs-only", no_argument, NULL, O_REFSONLY},        {"help", no_argument, NULL, 'h'},
+    {"refs-only", no_argument, NULL, O_REFSONLY},        {"methods", no_argument, NULL, O_METHODS},
+    {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, 'V'},                 {NULL, 0, NULL, 0},
 };
 
@@ -134,7 +142,7 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
     sw->plot = "scripts/sweep_plot.sh";
     sw->baseline = SW_DEFAULT_BASELINE;
     const char *scenes = NULL;
-    int set_size = 0, set_tsize = 0, set_spp = 0, set_frames = 0, c;
+    int set_size = 0, set_tsize = 0, set_spp = 0, set_frames = 0, set_baseline = 0, c;
     opterr = 0;
     optind = 1;
     while ((c = getopt_long(argc, argv, ":hV", LONG, NULL)) != -1) {
@@ -173,6 +181,7 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
             if (!is_file(v))
                 return bad("--baseline: no scene file '%s'", v);
             sw->baseline = v;
+            set_baseline = 1;
             break;
         case O_SIZE:
             if (parse_size(v, &sw->ew, &sw->eh))
@@ -224,6 +233,9 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         case O_REFSONLY:
             sw->refs_only = 1;
             break;
+        case O_METHODS:
+            sw->methods = 1;
+            break;
         default:
             return bad("unknown option '%s' (see --help)", argv[optind - 1]);
         }
@@ -242,6 +254,14 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         if (!set_frames)
             sw->frames = 3;
         sw->warmup = sw->warmup < 1 ? sw->warmup : 1;
+    }
+    if (sw->methods) {
+        if (!scenes)
+            scenes = METHODS_SCENES;
+        if (!set_baseline)
+            sw->baseline = METHODS_BASELINE;
+        if (!set_tsize && !sw->quick)
+            sw->tw = 320, sw->th = 240;
     }
     return parse_views(sw, scenes ? scenes : DEFAULT_SCENES);
 }

@@ -23,7 +23,7 @@
 
 #define SW_MAX_SCENES 16
 #define SW_MAX_VALUES 8
-#define SW_MAX_SETS 24
+#define SW_MAX_SETS 40
 #define SW_NKNOBS 17   /* entries of the knob table (knobs.c checks) */
 #define SW_VALUE_LEN 24
 #define SW_DEFAULT_BASELINE "scenes/cumulus.scene" /* the default scene: its settings are `high` */
@@ -44,9 +44,12 @@ extern knob sw_knobs[SW_NKNOBS];
 int sw_knobs_init(const char *baseline_path, cu_error *err);
 int sw_knob_is(int k, const char *name);
 
-/* A configuration: one value index per knob. */
+/* A configuration: one value index per knob, then extra "key=value" settings separated by ';', applied after the
+ * knobs' (cumulo-sweep --methods: the presets and the uniform ray march; empty in the one-knob sweep). */
+#define SW_EXTRA_LEN 600
 typedef struct config {
     int v[SW_NKNOBS];
+    char extra[SW_EXTRA_LEN];
 } config;
 void config_high(config *c);
 /* --set list ("key=value", all knobs given explicitly) and resolution scale of a configuration; returns the count. */
@@ -64,6 +67,10 @@ typedef struct result {
     double tmin_ms, tmin_ratio; /* fastest frame: on a loaded machine the least disturbed estimate */
     double rmse, psnr, peak, maxabs, visible, mean_ref, rel_rmse;
     double rel_bias;       /* sqrt(max(0, MSE - mean sigma^2 of the reference)) / mean reference: PT noise removed */
+    /* on the pixels the cloud changes (view.mask; --methods): where the light is, not only how much */
+    double cloud_rel_rmse; /* RMSE / mean reference after a 3x3 box filter of both (jitter and PT noise averaged) */
+    double contrast;       /* p90 / p10 of the 3x3-filtered luminance */
+    double ssim;           /* mean SSIM of the tone-mapped 8-bit luminance, 7x7 windows centred on cloud pixels */
     int ok;
 } result;
 
@@ -77,6 +84,9 @@ typedef struct view {
     double exposure, white[3];
     double clip[3];        /* radiance the display curve saturates at (exposure * L / white = 16): the sun disk */
     int noise_on;
+    unsigned char *mask;   /* --methods: 1 where the reference differs from the sky alone (the cloud), error size */
+    int mask_n;            /* pixels in it */
+    double ref_contrast;   /* the reference's contrast over the mask (result.contrast's definition) */
 } view;
 
 typedef struct sweep {
@@ -84,6 +94,7 @@ typedef struct sweep {
     int spp, frames, warmup, quick, threshold, pt_threads;
     int sun_moving;        /* --sun-every-frame: time frames that redo the sun pass, as `cumulo bench` does */
     int refs_only;
+    int methods;           /* --methods: Kol's method against the uniform ray march (methods.c) */
     double budget_med, budget_low;
     const char *out, *refdir, *plot, *baseline;
     int nviews;
@@ -120,14 +131,26 @@ int sw_load_reference(sweep *sw, view *v);
 void sw_compare(const sweep *sw, const view *v, const float *img, result *r);
 /* Bilinear upsampling of a w x h RGB image (top row first) to W x H (pixel centres aligned). */
 void sw_upsample(const float *src, int w, int h, float *dst, int W, int H);
+/* The cloud mask of v from an image of its sky alone (the cloud's density 0), and the reference's contrast on it. */
+int sw_view_mask(const sweep *sw, view *v, const float *sky);
+/* cloud_rel_rmse, contrast and ssim of img against v's reference on v's mask (nothing without a mask). */
+void sw_cloud_metrics(const sweep *sw, const view *v, const float *img, result *r);
 /* Means over views of result idx (max_abs: the max). */
 void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg);
 
 /* ---- measure.c ---- */
 /* Measures cfg[0..n-1] (cfg[0] = high, the time reference) on one view. */
 int sw_measure_view(sweep *sw, view *v, const config *cfg, int n, result *res);
+/* The error half alone: cfg[0..n-1] rendered linear at the error size and compared; the first image also into
+ * first (when not NULL). */
+int sw_error_view(sweep *sw, view *v, const config *cfg, int n, result *res, float *first);
 /* One configuration on every view (high re-timed alongside); per-view and ALL rows go to the CSV under kind. */
 int sw_measure_config(sweep *sw, const config *c, const char *kind, const char *label, result *agg);
+
+/* ---- methods.c ---- */
+/* cumulo-sweep --methods: Kol's method (presets and segment counts) against the uniform ray march (steps along the
+ * view and toward the sun) on every view, timed in one interleaved run; writes methods.csv, methods.md, methods.dat. */
+int sw_methods_run(sweep *sw);
 
 /* ---- choose.c ---- */
 /* Greedy preset choice from the one-knob aggregates (vidx maps knob * SW_MAX_VALUES + value to a variant, -1 if not

@@ -3,7 +3,7 @@
 # the plot, the table, the presets and the CSV to docs/. Not part of `make check`. SWEEP_ARGS adds options.
 # The sweep links the path tracer (tools/pathtrace/pt.o) and renders its references in-process.
 SWEEP_SRCS := $(addprefix tools/sweep/,main.c options.c knobs.c reference.c metrics.c measure.c choose.c report.c \
-              sweep.c)
+              sweep.c methods.c)
 SWEEP_OBJS := $(SWEEP_SRCS:%.c=$(B)/obj/%.o)
 CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp -Itools/pathtrace $(PLATFORM_CPPFLAGS) -I$(B)/gen \
                 $(LIB_CFLAGS)
@@ -39,3 +39,17 @@ sweep: $(B)/cumulo-sweep
 	cp $(SWEEP_DIR)/sweep.csv docs/sweep_results.csv
 	@if [ -f $(SWEEP_DIR)/pareto.png ]; then cp $(SWEEP_DIR)/pareto.png docs/sweep_pareto.png && echo "sweep: docs/sweep.md and docs/sweep_pareto.png updated"; \
 	else echo "sweep: docs/sweep.md updated; no $(SWEEP_DIR)/pareto.png (gnuplot missing?), docs/sweep_pareto.png left as it was"; fi
+
+# `make sweep-methods`: cumulo-sweep --methods (issue 14), Kol's method against the uniform ray march on the four
+# views written for it (scenes/sweep_*_hg.scene: Henyey-Greenstein, a constant sky), time at 320x240 as the outside
+# comparison measured it; copies the table, the CSV and the plot to docs/. Not part of `make check`.
+METHODS_DIR  ?= $(B)/sweep-methods
+METHODS_ARGS ?=
+sweep-methods: $(B)/cumulo-sweep
+	@start=$$(date +%s); \
+	$(TEST_ENV) $(B)/cumulo-sweep --methods --out $(METHODS_DIR) --ref-dir $(SWEEP_DIR)/ref $(METHODS_ARGS) || exit $$?; \
+	echo "sweep-methods: took $$(( $$(date +%s) - start )) s"
+	sh scripts/methods_plot.sh $(METHODS_DIR) || true
+	cp $(METHODS_DIR)/methods.md docs/methods.md
+	cp $(METHODS_DIR)/methods.csv docs/methods.csv
+	@if [ -f $(METHODS_DIR)/methods.png ]; then cp $(METHODS_DIR)/methods.png docs/methods.png; fi

@@ -1,0 +1,258 @@
+/* tools/sweep/methods.c: `cumulo-sweep --methods` (issue 14): Kol's method against the mainstream uniform ray march
+ * (quality.method = uniform) on the same axes. On every view both families are timed in one interleaved run
+ * (measure.c: round-robin frames, high three times) and compared with the view's path-traced reference on the
+ * pixels the cloud changes: relative RMSE after a 3x3 box filter, the contrast p90/p10 against the reference's, and
+ * SSIM of the tone-mapped luminance (metrics.c). Then, for each point of one family, the fastest point of the other
+ * that is at least as accurate: the "time at equal error" ratios. Writes methods.csv, methods.md, methods.dat
+ * (scripts/methods_plot.sh draws methods.png from it). */
+#include "sweep.h"
+#include "presets.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { FAM_KOL, FAM_UNIFORM };
+static const char *const FAMILY[2] = {"kol", "uniform"};
+
+/* Kol's method along its curve: the presets, and the segment count (the knob that moves its error most) about them;
+ * then the same with the noise's octaves baked into one texture (quality.noise_baked: 2 reads a sample, not 10). */
+static const struct {
+    int preset;        /* cu_preset whose settings come first */
+    const char *more;  /* then these */
+    const char *label;
+} KOL[] = {
+    {CU_PRESET_HIGH, "", "high"}, /* first: the time reference of every ratio (measure.c) */
+    {CU_PRESET_HIGH, "quality.segments=8", "high, 8 segments"},
+    {CU_PRESET_HIGH, "quality.segments=3", "high, 3 segments"},
+    {CU_PRESET_HIGH, "quality.segments=2", "high, 2 segments"},
+    {CU_PRESET_MEDIUM, "", "medium"},
+    {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments"},
+    {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments"},
+    {CU_PRESET_LOW, "", "low"},
+    {CU_PRESET_HIGH, "quality.noise_baked=on", "high, baked noise"},
+    {CU_PRESET_HIGH, "quality.noise_baked=on;quality.segments=3", "high, 3 segments, baked noise"},
+    {CU_PRESET_MEDIUM, "quality.noise_baked=on", "medium, baked noise"},
+    {CU_PRESET_MEDIUM, "quality.noise_baked=on;quality.segments=3", "medium, 3 segments, baked noise"},
+};
+#define N_KOL ((int)(sizeof KOL / sizeof KOL[0]))
+/* The uniform march: steps along the view x steps toward the sun, with the baked noise (what a real-time march reads)
+ * and, for the outside comparison's two settings, the exact noise. */
+static const struct {
+    int n, m, baked;
+} UNI[] = {
+    {8, 2, 1}, {8, 4, 1}, {16, 2, 1}, {16, 4, 1}, {16, 8, 1}, {32, 2, 1}, {32, 4, 1}, {32, 8, 1}, {64, 4, 1},
+    {64, 6, 1}, {64, 8, 1}, {128, 4, 1}, {128, 8, 1}, {16, 4, 0}, {64, 6, 0},
+};
+#define N_UNI ((int)(sizeof UNI / sizeof UNI[0]))
+#define N_CFG (N_KOL + N_UNI)
+
+typedef struct mpoint {
+    int family;
+    char label[64];
+    config c;
+} mpoint;
+
+static void make_points(mpoint *pt)
+{
+    int n = 0;
+    for (int i = 0; i < N_KOL; i++, n++) {
+        pt[n].family = FAM_KOL;
+        snprintf(pt[n].label, sizeof pt[n].label, "%s", KOL[i].label);
+        config_high(&pt[n].c);
+        snprintf(pt[n].c.extra, SW_EXTRA_LEN, "%s%s%s", cu_preset_settings((cu_preset)KOL[i].preset),
+                 *KOL[i].more ? ";" : "", KOL[i].more);
+    }
+    for (int i = 0; i < N_UNI; i++, n++) {
+        pt[n].family = FAM_UNIFORM;
+        snprintf(pt[n].label, sizeof pt[n].label, "uniform %d / %d%s", UNI[i].n, UNI[i].m,
+                 UNI[i].baked ? ", baked noise" : "");
+        config_high(&pt[n].c);
+        snprintf(pt[n].c.extra, SW_EXTRA_LEN,
+                 "ms.mode=octaves;quality.method=uniform;quality.uniform_steps=%d;quality.uniform_sun_steps=%d;"
+                 "quality.noise_baked=%s",
+                 UNI[i].n, UNI[i].m, UNI[i].baked ? "on" : "off");
+    }
+}
+
+/* The view's cloud mask: its sky alone (every cloud's density 0) at the error size, against the reference. */
+static int view_mask(sweep *sw, view *v)
+{
+    config sky;
+    config_high(&sky);
+    snprintf(sky.extra, SW_EXTRA_LEN, "cloud.density=0");
+    float *img = malloc(sizeof(float) * 3 * (size_t)sw->ew * sw->eh);
+    result r;
+    memset(&r, 0, sizeof r);
+    int rc = !img || sw_error_view(sw, v, &sky, 1, &r, img) || sw_view_mask(sw, v, img);
+    free(img);
+    if (rc == 0)
+        printf("sweep: %s: %d cloud pixels of %d; the reference's contrast p90/p10 %.3f\n", v->name, v->mask_n,
+               sw->ew * sw->eh, v->ref_contrast);
+    return rc;
+}
+
+/* The fastest point of family fam at least as accurate as error e (cloud relative RMSE); -1 if none is. */
+static int fastest_within(const mpoint *pt, const result *r, int fam, double e)
+{
+    int best = -1;
+    for (int i = 0; i < N_CFG; i++)
+        if (pt[i].family == fam && r[i].cloud_rel_rmse <= e && (best < 0 || r[i].time_ms < r[best].time_ms))
+            best = i;
+    return best;
+}
+
+static void write_csv(FILE *f, const sweep *sw, const mpoint *pt, result *const *res)
+{
+    fprintf(f, "# cumulo-sweep --methods: error at %dx%d vs cumulo-pt %d spp on the cloud's pixels; time at %dx%d, "
+               "median of %d frames after %d warm-up, interleaved\n",
+            sw->ew, sw->eh, sw->spp, sw->tw, sw->th, sw->frames, sw->warmup);
+    fprintf(f, "view,family,label,changes,time_ms,time_ratio,cloud_rel_rmse,contrast,ref_contrast,ssim,rel_rmse,"
+               "psnr_db\n");
+    for (int s = 0; s < sw->nviews; s++)
+        for (int i = 0; i < N_CFG; i++) {
+            const result *r = &res[s][i];
+            fprintf(f, "%s,%s,%s,\"%s\",%.3f,%.4f,%.5f,%.4f,%.4f,%.4f,%.5f,%.3f\n", sw->v[s].name,
+                    FAMILY[pt[i].family], pt[i].label, pt[i].c.extra, r->time_ms, r->time_ratio, r->cloud_rel_rmse,
+                    r->contrast, sw->v[s].ref_contrast, r->ssim, r->rel_rmse, r->psnr);
+        }
+}
+
+static void write_dat(FILE *f, const sweep *sw, const mpoint *pt, result *const *res)
+{
+    fprintf(f, "# view_index family(0 kol, 1 uniform) time_ratio cloud_rel_rmse contrast_ratio ssim \"label\" "
+               "\"view\"\n");
+    for (int s = 0; s < sw->nviews; s++)
+        for (int i = 0; i < N_CFG; i++) {
+            const result *r = &res[s][i];
+            fprintf(f, "%d %d %.5f %.5f %.4f %.4f \"%s\" \"%s\"\n", s, pt[i].family, r->time_ratio, r->cloud_rel_rmse,
+                    sw->v[s].ref_contrast > 0 ? r->contrast / sw->v[s].ref_contrast : 0, r->ssim, pt[i].label,
+                    sw->v[s].name);
+        }
+}
+
+/* One view's rows of "time at equal error" (into f, unless NULL): each point of family fam against the fastest of the
+ * other family that is at least as accurate. Returns how many had one; *worst gets the largest Kol / uniform time
+ * ratio among them. */
+static int equal_error_rows(FILE *f, const mpoint *pt, const result *r, int fam, double *worst)
+{
+    int other = !fam, n = 0;
+    for (int i = 0; i < N_CFG; i++) {
+        if (pt[i].family != fam)
+            continue;
+        int j = fastest_within(pt, r, other, r[i].cloud_rel_rmse);
+        if (j < 0) {
+            if (f)
+                    fprintf(f, "| %s | %.3f | %.3f | no %s point is as accurate | | |\n", pt[i].label,
+                        r[i].cloud_rel_rmse, r[i].time_ratio, FAMILY[other]);
+            continue;
+        }
+        double kol = fam == FAM_KOL ? r[i].time_ms : r[j].time_ms, uni = fam == FAM_KOL ? r[j].time_ms : r[i].time_ms;
+        double q = kol / uni;
+        if (n == 0 || q > *worst)
+            *worst = q;
+        n++;
+        if (f)
+            fprintf(f, "| %s | %.3f | %.3f | %s (%.3f) | %.3f | **%.2f** |\n", pt[i].label, r[i].cloud_rel_rmse,
+                r[i].time_ratio, pt[j].label, r[j].cloud_rel_rmse, r[j].time_ratio, q);
+    }
+    return n;
+}
+
+static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *res)
+{
+    const char *lp = getenv("LP_NUM_THREADS");
+    fprintf(f, "# Kol's method against the uniform ray march\n\n"
+               "Written by `cumulo-sweep --methods` (`make sweep-methods`). Each view: every configuration of both "
+               "families timed at %dx%d in one interleaved run (median of %d frames after %d warm-up; `high` timed "
+               "three times, times as ratios to it), LP_NUM_THREADS=%s; rendered linear at %dx%d and compared with the "
+               "path tracer at %d spp on the pixels the cloud changes (the reference against the sky alone): relative "
+               "RMSE of the luminance after a 3x3 box filter of both images (the uniform march's jitter and the path "
+               "tracer's noise averaged), contrast p90/p10 of that luminance (the reference's in the heading), SSIM of "
+               "the tone-mapped luminance. Kol's family: the presets and segment counts about them; the uniform march: "
+               "N steps along the view x M toward the sun, octaves for multiple scattering.\n\n",
+            sw->tw, sw->th, sw->frames, sw->warmup, lp ? lp : "(unset)", sw->ew, sw->eh, sw->spp);
+    fprintf(f, "## Summary: Kol's time / the uniform march's time at equal error\n\n"
+               "For each point of one family, the fastest point of the other at least as accurate (cloud relative "
+               "RMSE); the largest ratio over the pairs found. Below 1: Kol's method is faster at every error level "
+               "both reach.\n\n| view | pairs | largest Kol / uniform | Kol's best error | uniform's best error |\n"
+               "| --- | ---: | ---: | ---: | ---: |\n");
+    for (int s = 0; s < sw->nviews; s++) {
+        double w1 = 0, w2 = 0;
+        int n1 = equal_error_rows(NULL, pt, res[s], FAM_UNIFORM, &w1), n2 = equal_error_rows(NULL, pt, res[s], FAM_KOL, &w2);
+        double best[2] = {1e30, 1e30};
+        for (int i = 0; i < N_CFG; i++)
+            if (res[s][i].cloud_rel_rmse < best[pt[i].family])
+                best[pt[i].family] = res[s][i].cloud_rel_rmse;
+        double worst = n1 && n2 ? fmax(w1, w2) : n1 ? w1 : w2;
+        if (n1 + n2)
+            fprintf(f, "| %s | %d | %.2f | %.3f | %.3f |\n", sw->v[s].name, n1 + n2, worst, best[0], best[1]);
+        else
+            fprintf(f, "| %s | 0 | (no error level both reach) | %.3f | %.3f |\n", sw->v[s].name, best[0], best[1]);
+    }
+    for (int s = 0; s < sw->nviews; s++) {
+        const view *v = &sw->v[s];
+        fprintf(f, "\n## %s (the path tracer's contrast %.2f; %d cloud pixels)\n\n", v->name, v->ref_contrast,
+                v->mask_n);
+        fprintf(f, "| family | configuration | time (ms) | time / high | rel. RMSE (cloud) | contrast | SSIM | "
+                   "rel. RMSE (image) |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+        for (int i = 0; i < N_CFG; i++) {
+            const result *r = &res[s][i];
+            fprintf(f, "| %s | %s | %.1f | %.3f | %.4f | %.2f | %.3f | %.4f |\n", FAMILY[pt[i].family], pt[i].label,
+                    r->time_ms, r->time_ratio, r->cloud_rel_rmse, r->contrast, r->ssim, r->rel_rmse);
+        }
+        double w;
+        fprintf(f, "\nAt equal error (time / high of both; the last column Kol's time over the uniform march's):\n\n"
+                   "| point | its error | its time | the other family's fastest as accurate (its error) | its time | "
+                   "Kol / uniform |\n| --- | ---: | ---: | --- | ---: | ---: |\n");
+        equal_error_rows(f, pt, res[s], FAM_UNIFORM, &w);
+        equal_error_rows(f, pt, res[s], FAM_KOL, &w);
+    }
+}
+
+static int write_file(const sweep *sw, const char *name, void (*fn)(FILE *, const sweep *, const mpoint *,
+                                                                      result *const *),
+                      const mpoint *pt, result *const *res)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", sw->out, name);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        return fprintf(stderr, "cumulo-sweep: cannot write %s\n", path), 1;
+    fn(f, sw, pt, res);
+    if (ferror(f) | fclose(f))
+        return fprintf(stderr, "cumulo-sweep: error writing %s\n", path), 1;
+    return 0;
+}
+
+int sw_methods_run(sweep *sw)
+{
+    static mpoint pt[N_CFG];
+    static config cfg[N_CFG];
+    make_points(pt);
+    for (int i = 0; i < N_CFG; i++)
+        cfg[i] = pt[i].c;
+    result *res[SW_MAX_SCENES] = {0};
+    int rc = 0;
+    double t0 = sw_now_ms();
+    for (int s = 0; s < sw->nviews && rc == 0; s++) {
+        if (!(res[s] = calloc(N_CFG, sizeof(result)))) {
+            fprintf(stderr, "cumulo-sweep: out of memory\n");
+            rc = 1;
+        } else {
+            rc = view_mask(sw, &sw->v[s]) || sw_measure_view(sw, &sw->v[s], cfg, N_CFG, res[s]);
+        }
+    }
+    if (rc == 0)
+        rc = write_file(sw, "methods.csv", write_csv, pt, res) || write_file(sw, "methods.dat", write_dat, pt, res) ||
+             write_file(sw, "methods.md", write_md, pt, res);
+    if (rc == 0)
+        printf("sweep: wrote %s/methods.csv, methods.md, methods.dat in %.1f min\n", sw->out,
+               (sw_now_ms() - t0) / 60e3);
+    for (int s = 0; s < sw->nviews; s++) {
+        free(res[s]);
+        free(sw->v[s].mask);
+        sw->v[s].mask = NULL;
+    }
+    return rc;
+}
