@@ -5,7 +5,7 @@
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
-// inside), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
+// inside), BOUNDARY_KNOTS (quality.boundary_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
 // model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
 // clouds shade this one: their optical depth along the sun, pass_shadow.c), METHOD_UNIFORM (the mainstream uniform
 // ray march instead of Kol's segments: UNIFORM_STEPS along the view, UNIFORM_SUN_STEPS toward the sun at each).
@@ -62,6 +62,7 @@ uniform float u_host_scale;       // full-resolution pixels per pixel of this pa
 #endif
 uniform float u_bound_R;       // radius of a sphere about the local origin containing every ellipsoid
 uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
+uniform float u_boundary_step; // quality.boundary_step: the longest step along a chord that never reaches the core
 uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1);
                                // row 1: the removed forward peak P_p of a chopped Mie function (eq. 3.65)
 #if PHASE_PEAK
@@ -179,6 +180,24 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 {
     return source_from((sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE, ph0);
 }
+
+#if BOUNDARY_KNOTS
+// Whether the chords k0 .. k1 - 1 of the cast ray reach the core (d >= h) anywhere: each chord at its deepest point,
+// its closest approach to its ellipsoid's centre in the ellipsoid's unit-sphere space (the union's distance is the
+// largest of its ellipsoids', so one chord reaching its core is enough).
+bool reaches_core(vec3 ro, vec3 dir, int k0, int k1)
+{
+    for (int j = k0; j < k1; j++) {
+        int i = hit_idx[j];
+        vec3 ir = u_ell_ir[i].xyz;
+        vec3 q = (ro - u_ell_c[i].xyz) * ir, ds = dir * ir;
+        float tc = clamp(-dot(q, ds) / dot(ds, ds), hit_t0[j], hit_t1[j]);
+        if (radial_distance(ro + dir * tc, i) >= u_h)
+            return true;
+    }
+    return false;
+}
+#endif
 
 #if METHOD_UNIFORM && !ENERGY_PASS
 // The mainstream method (Schneider's Nubis, Hillaire's Frostbite, Unreal): the trade study's baseline. No sun maps:
@@ -352,7 +371,7 @@ void main()
     while (k < n_hits && intervals < MAX_INTERVALS) {
         // Merge overlapping chords into one interval of the union so overlap regions are integrated once.
         float a, b;
-        int merged;
+        int merged, k0 = k;
         k = next_interval(k, a, b, merged);
         if (a >= t_end)
             break;
@@ -368,6 +387,10 @@ void main()
         // Knots: the boundary ramps get segments of their own, the core SEGMENTS per merged chord in geometric
         // progression (make_knots in density.glsl).
         knots kn = make_knots(a, len, nudge, SEGMENTS * merged, u_seg_ratio, true);
+#if BOUNDARY_KNOTS
+        if (!reaches_core(ro, dir, k0, k))
+            kn = boundary_knots(a, len, SEGMENTS * merged, u_boundary_step);
+#endif
         int nk = knot_count(kn);
         float t = a;
         vec3 p = ro + dir * (t + nudge);

@@ -137,6 +137,18 @@ knots make_knots(float a, float len, float nudge, int n, float r, bool allow_ram
     return k;
 }
 
+// A chord that never reaches the core (a silhouette, a grazing rim): all of it is noisy boundary, where Kol's few
+// geometric segments alias the noise (their long last segments step over its 30 m features: the blocky rims). Even
+// knots at most `step` apart, at least n, at most BOUNDARY_KNOTS_MAX.
+#define BOUNDARY_KNOTS_MAX 32
+knots boundary_knots(float a, float len, int n, float step)
+{
+    knots k;
+    k.a = a; k.len = len; k.r = 1.0; k.rl = 0.0; k.nr = 0;
+    k.nc = clamp(int(ceil(len / step)), n, BOUNDARY_KNOTS_MAX);
+    return k;
+}
+
 int knot_count(knots k)
 {
     return k.nc + 2 * k.nr;

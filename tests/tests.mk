@@ -37,9 +37,11 @@ $(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
 # gpu: renders through both headless back ends against references, closed forms and the CPU.
-$(foreach t,render extremes sunmap ms fallback field uniform,\
+$(foreach t,render extremes sunmap ms fallback field,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
+# How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
+$(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # The extremes matrix of every key's range, through the GPU renderer and the path tracer.
 $(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context); the

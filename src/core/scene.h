@@ -97,6 +97,7 @@ struct cu_scene {
     /* [quality] */
     int segments;             /* per ellipsoid crossed */
     double segment_ratio;     /* geometric ratio of consecutive segment lengths (1 = uniform) */
+    double boundary_step;     /* m: a chord that never reaches the core is marched in steps of at most this (0: off) */
     int cloud_downsample;     /* 1..4: the cloud pass at 1/N resolution, upsampled (pass_upsample.c) */
     int hull_tessellation;    /* latitude bands of the hull mesh (longitude = 2x) */
     int max_intervals;        /* merged in-cloud intervals per pixel */

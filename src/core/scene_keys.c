@@ -122,6 +122,12 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "segments", 1, "5", 1, 64, 0, "", "march segments per ellipsoid crossed", S(segments)),
     NUM("quality", "segment_ratio", 1, "1.6", 1, 10, 0, "", "ratio of consecutive segment lengths (1: uniform)",
         S(segment_ratio)),
+    /* boundary_step: a length; a chord takes at most 32 such steps (BOUNDARY_KNOTS_MAX in density.glsl) */
+    NUM("quality", "boundary_step", 1, "15", 0, 1e4, 0, "m",
+        "with noise: a ray's chord that never reaches a cloud's core is all noisy boundary (a silhouette, a thin "
+        "rim); march it in even steps of at most this, up to 32, instead of quality.segments (0: segments everywhere; "
+        "15 samples the noise's strongest octave, 31 m across at noise_scale 1, twice)",
+        S(boundary_step)),
     INT("quality", "hull_tessellation", 1, "10", 3, 64, 0, "",
         "latitude bands of the hull mesh (twice as many longitudes)", S(hull_tessellation)),
     INT("quality", "max_intervals", 1, "6", 1, CU_MAX_INTERVALS, 0, "",
@@ -129,7 +135,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     BOOL("quality", "noise", "on", "fractal noise in the boundary", S(noise)),
     INT("quality", "noise_octaves", 1, "5", 1, 5, 0, "", "noise mip levels summed (Kol eq. 3.74 uses 5)",
         S(noise_octaves)),
-    BOOL("quality", "noise_baked", "off", "fractal noise from one 64^3 texture holding its octaves' weighted sum: 2 "
+    BOOL("quality", "noise_baked", "on", "fractal noise from one 64^3 texture holding its octaves' weighted sum: 2 "
          "texture reads a sample instead of 10; the noise moves by 0.0035 RMS, 0.04 at most, of its [-1, 1] "
          "(tests/core/test_noise_baked)", S(noise_baked)),
     INT("quality", "sun_map_size", 1, "128", 16, 4096, 0, "texels",

@@ -59,7 +59,8 @@ static void test_baked_close_to_exact(void **st)
     cu_noise_destroy(&n);
 }
 
-/* At a level-0 texel centre the bake is the weighted sum of the levels sampled there, and the dropped octaves' means. */
+/* At a level-0 texel centre the bake is the weighted sum of the levels sampled there and the dropped octaves'
+ * means. */
 static void test_bake_at_texel_centres(void **st)
 {
     (void)st;

@@ -196,12 +196,23 @@ static void test_furnace(void **st)
     }
 }
 
+/* A homogeneous ellipsoid (no noise, h = 0), optically thick (tau 20-40 along its chords), lit by the sun alone: the
+ * sunlit source falls exponentially along each segment, which the energy-conserving segments (default) integrate
+ * exactly and Kol's trapezoids of k_e S e^-tau (eq. 3.20) overestimate by (dtau/2) coth(dtau/2). */
+#define THICK_SCENE                                                                                     \
+    "[output]\nsize = 128 96\n[camera]\nposition = 40 230 -900\nlook_at = 10 260 0\nfov = 40\n"         \
+    "[sun]\nelevation = 30\nazimuth = 200\n[sky]\nmodel = constant\ncolor = 0 0 0\n"                     \
+    "[cloud]\ndensity = 400\nboundary = 0\nphase = hg\ng = 0.85\n[quality]\nnoise = off\n"                \
+    "[ms]\nsky_light = off\nmode = none\n[ellipsoid]\ncenter = 0 250 0\nradii = 200 120 160\n"
+
 static void test_segment_integration(void **st)
 {
     (void)st;
-    /* Few segments against many: the energy-conserving segments (default) must be closer to the converged image than
-     * Kol's trapezoids of k_e S e^-tau (eq. 3.20), which overestimate optically thick segments. */
-    static const char *const ref[] = {"quality.segments=48", NULL};
+    /* Three segments against the converged image: 64 even segments (a geometric 48 is no reference: at ratio 1.6
+     * its last segments span most of the chord). Measured RMSE 0.12 (energy-conserving) against 0.71 (Kol's
+     * trapezoids), mean radiance 0.076. On the noisy default cumulus the two are alike (0.055 and 0.033): there the
+     * error is the noise's sampling, not the segments' integration. */
+    static const char *const ref[] = {"quality.segments=64", "quality.segment_ratio=1", NULL};
     static const char *const exp3[] = {"quality.segments=3", NULL};
     static const char *const kol3[] = {"quality.segments=3", "quality.integration=kol", NULL};
     const char *const *sets[3] = {ref, exp3, kol3};
@@ -212,7 +223,7 @@ static void test_segment_integration(void **st)
     float *img[3];
     for (int k = 0; k < 3; k++) {
         img[k] = malloc(sizeof(float) * (size_t)n);
-        if (tr_render(&c, "scenes/cumulus.scene", sets[k]))
+        if (tr_render(&c, THICK_SCENE, sets[k]))
             fail_msg("%s", c.err);
         tr_read_rgbf(&c, img[k]);
     }
@@ -222,8 +233,9 @@ static void test_segment_integration(void **st)
             e[k - 1] += ((double)img[k][i] - img[0][i]) * ((double)img[k][i] - img[0][i]);
         e[k - 1] = sqrt(e[k - 1] / n);
     }
-    printf("3 segments vs 48: RMSE %.4f energy-conserving, %.4f Kol trapezoids\n", e[0], e[1]);
-    assert_true(e[0] < e[1]);
+    printf("3 segments vs 64 even ones, a thick homogeneous cloud: RMSE %.4f energy-conserving, %.4f Kol trapezoids\n",
+           e[0], e[1]);
+    assert_true(e[0] < 0.5 * e[1]);
     for (int k = 0; k < 3; k++)
         free(img[k]);
     tr_close(&c);

@@ -1,0 +1,52 @@
+#!/bin/sh
+# tools/bench/frame_costs.sh: what a frame costs when no cloud is on screen and when the sun moves every frame (issue
+# 14's targets: at most 0.10x and 1.2x of the still cloud view), for each preset and for the uniform ray march, on
+# the default cumulus: the cloud view; the camera turned away from the cloud (look_at behind it); the sun turned
+# 0.01 degree every frame (cumulo bench --sun-every-frame). Rounds interleaved (every case once a round), medians over
+# rounds, ratios to the cloud view in the same run. Prints a Markdown table.
+# Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
+set -eu
+ROUNDS=${1:-3}
+SIZE=${2:-800x480}
+C=${CUMULO:-build/cumulo}
+S=scenes/cumulus.scene
+T=${TMPDIR:-/tmp}/cumulo-fc-bench.$$
+mkdir -p "$T"
+trap 'rm -rf "$T"' EXIT
+CONFIGS="high medium low uniform"
+sets() {
+  case $1 in
+    uniform) echo "--set quality.method=uniform --set ms.mode=octaves --set quality.uniform_steps=16 \
+--set quality.uniform_sun_steps=4 --set quality.noise_baked=on" ;;
+    *) echo "--set quality.preset=$1" ;;
+  esac
+}
+time_of() { # CONFIG CASE; the empty view looks away from the cloud (it is behind the camera)
+  case $2 in
+    empty) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") --set "camera.look_at=0 150 -2400" ;;
+    sun) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") --sun-every-frame ;;
+    *) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") ;;
+  esac | sed -n 's/.*FrameTime: \([0-9.]*\) ms.*/\1/p' | head -1
+}
+r=1
+while [ "$r" -le "$ROUNDS" ]; do
+  for c in $CONFIGS; do
+    for k in cloud empty sun; do
+      echo "$c $k $(time_of "$c" "$k")" >>"$T/all"
+    done
+  done
+  r=$((r + 1))
+done
+med() { awk -v c="$1" -v k="$2" '$1 == c && $2 == k { print $3 }' "$T/all" | sort -n |
+        awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+echo "| configuration | cloud view (ms) | no cloud on screen (ms) | ratio | sun moving every frame (ms) | ratio |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: |"
+for c in $CONFIGS; do
+  a=$(med "$c" cloud); b=$(med "$c" empty); s=$(med "$c" sun)
+  label=$c
+  [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
+  printf '| %s | %s | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" "$(echo "$b $a" | awk '{print $1/$2}')" "$s" \
+    "$(echo "$s $a" | awk '{print $1/$2}')"
+done
+echo
+echo "($ROUNDS rounds, $SIZE, LP_NUM_THREADS=${LP_NUM_THREADS:-unset}, load $(cut -d' ' -f1-3 /proc/loadavg))"
