@@ -1,6 +1,7 @@
 #version 300 es
 // shaders_gles/sky.frag: background radiance: Preetham et al. 1999 analytic sky (Perez distribution of Y, x, y) or a
-// constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units).
+// constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units);
+// with SKY_TONEMAP (a frame with no cloud in view) the display's colour straight away, as the tone map would make it.
 precision highp float;
 in vec2 v_ndc;
 uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
@@ -41,6 +42,12 @@ uniform vec3 u_zenith;         // Y (kcd/m^2), x, y at the zenith
 uniform vec3 u_norm;           // F(0, theta_s) for Y, x, y
 #endif
 out vec4 o_color;
+#ifndef SKY_TONEMAP
+#define SKY_TONEMAP 0
+#endif
+#if SKY_TONEMAP
+#include "tonecurve.glsl"
+#endif
 
 #if !SKY_CONSTANT
 float perez(int k, float cos_theta, float gamma, float cos_gamma)
@@ -83,4 +90,7 @@ void main()
             L += u_sun_irr / 6.8e-5;
     }
     o_color = vec4(min(L * u_out_scale, vec3(u_out_max)), 1.0);
+#if SKY_TONEMAP
+    o_color = vec4(tone_curve(o_color.rgb), 1.0);
+#endif
 }

@@ -7,10 +7,7 @@ uniform float u_exposure;
 uniform vec3 u_white;        // white balance: divides by the colour of typical daylight
 uniform bool u_composite;    // clouds only (cu_frame.clouds_only): blended premultiplied over the host's colour
 out vec4 o_color;
-vec3 srgb(vec3 c)
-{
-    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
+#include "tonecurve.glsl"
 void main()
 {
     vec4 c = texelFetch(u_hdr, ivec2(gl_FragCoord.xy), 0);
@@ -25,9 +22,7 @@ void main()
     float a = c.a;
     if (u_composite)
         c.rgb /= a;
-    vec3 x = max(c.rgb * u_exposure / u_white, vec3(0.0));
-    vec3 t = clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    o_color = vec4(srgb(t), 1.0);
+    o_color = vec4(tone_curve(c.rgb * u_exposure / u_white), 1.0);
     if (u_composite)
         o_color *= a;
 #endif

@@ -238,6 +238,19 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         return 1;
     cu_profile_mark(r, CU_PASS_SHADOWS);
 
+    /* No cloud in view: the sky straight into the output, its tone map in the same pass (one full-screen pass, not
+     * the sky's and the tone map's: what a view without cloud costs). Linear output and clouds-only frames take the
+     * general path. */
+    if (visible == 0 && !f->clouds_only && !f->linear) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, f->fbo);
+        gl->Viewport(0, 0, f->width, f->height);
+        gl->Disable(GL_BLEND);
+        cu_pass_sky_draw(&r->pass_sky, ctx, 1);
+        ctx->camera.visible = 0;
+        cu_profile_mark(r, CU_PASS_SKY);
+        GLenum e = gl->GetError();
+        return e != GL_NO_ERROR ? cu_fail(err, "render: GL error 0x%x", e) : 0;
+    }
     gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
     gl->Viewport(0, 0, f->width, f->height);
     gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
@@ -249,7 +262,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
     gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
     if (!f->clouds_only)
-        cu_pass_sky_draw(&r->pass_sky, ctx);
+        cu_pass_sky_draw(&r->pass_sky, ctx, 0);
     cu_profile_mark(r, CU_PASS_SKY);
     /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them */
     int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;

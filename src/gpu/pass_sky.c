@@ -1,19 +1,31 @@
 /* src/gpu/pass_sky.c: the sky pass (see pass_sky.h). */
 #include "pass_sky.h"
+#include "error.h"
+#include <stdio.h>
 #include <string.h>
+
+static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
+{
+    cu_sun_locs_get(gl, prog, &l->sun);
+#define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
+    LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
+    LOC(zenith); LOC(norm); LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
+#undef LOC
+    cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
+}
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     memset(p, 0, sizeof *p);
-    if (!(p->prog = cu_gl_program(gl, "fullscreen.vert", "sky.frag", defines, err)))
+    char out_defs[2048];
+    if (snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defines) >= (int)sizeof out_defs)
+        return cu_fail(err, "sky: shader defines too long");
+    if (!(p->prog = cu_gl_program(gl, "fullscreen.vert", "sky.frag", defines, err)) ||
+        !(p->prog_out = cu_gl_program(gl, "fullscreen.vert", "sky.frag", out_defs, err)))
         return 1;
-    cu_sun_locs_get(gl, p->prog, &p->sun);
-#define LOC(f) p->f = cu_gpu_loc(gl, p->prog, "u_" #f)
-    LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
-    LOC(zenith); LOC(norm); LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
-#undef LOC
-    cu_gpu_unit(gl, p->prog, "u_ground_tau", CU_UNIT_SHADOW);
+    locs_get(gl, p->prog, &p->hdr);
+    locs_get(gl, p->prog_out, &p->out);
     return 0;
 }
 
@@ -21,16 +33,19 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
 {
     if (p->prog)
         gl->DeleteProgram(p->prog);
-    p->prog = 0;
+    if (p->prog_out)
+        gl->DeleteProgram(p->prog_out);
+    p->prog = p->prog_out = 0;
 }
 
-void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx)
+void cu_pass_sky_draw(const cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
 {
     const cu_gl *gl = ctx->gl;
     const cu_sky *sky = ctx->sky;
     const cu_scene *s = ctx->scene;
+    const cu_sky_locs *p = to_output ? &pass->out : &pass->hdr;
     gl->Disable(GL_DEPTH_TEST);
-    gl->UseProgram(p->prog);
+    gl->UseProgram(to_output ? pass->prog_out : pass->prog);
     gl->UniformMatrix4fv(p->inv_viewproj, 1, GL_FALSE, ctx->camera.inv_rot);
     cu_sun_uniforms(ctx, &p->sun);
     gl->Uniform3f(p->sun_irr, (float)sky->sun_irradiance[0], (float)sky->sun_irradiance[1],

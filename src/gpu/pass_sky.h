@@ -4,15 +4,21 @@
 #define CU_PASS_SKY_H
 #include "gpu_scene.h"
 
-typedef struct cu_pass_sky {
-    GLuint prog;
+typedef struct cu_sky_locs {
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color, perez, zenith, norm;
     GLint ground_sun, eye, gmap, shadow_g;
+} cu_sky_locs;
+
+/* prog draws radiance into the HDR target under the clouds; prog_out, for a frame with no cloud in view, the
+ * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two). */
+typedef struct cu_pass_sky {
+    GLuint prog, prog_out;
+    cu_sky_locs hdr, out;
 } cu_pass_sky;
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
-/* Draws into the bound target, for the directions of ctx->camera. */
-void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx);
+/* Draws into the bound target, for the directions of ctx->camera: radiance, or (to_output) tone-mapped colour. */
+void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output);
 #endif

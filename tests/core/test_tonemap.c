@@ -1,6 +1,7 @@
-/* tests/core/test_tonemap.c: src/core/tonemap.c, the CPU twin of shaders_gles/tonemap.frag: the shader's source carries
- * the same formula and constants, the curve matches values worked out by hand from the shader's formula, and the 8-bit
- * output agrees with the formula evaluated in single precision (GLSL highp) over a range of radiances. */
+/* tests/core/test_tonemap.c: src/core/tonemap.c, the CPU twin of the display curve (shaders_gles/tonecurve.glsl, which
+ * tonemap.frag and sky.frag apply): the shaders' source carries the same formula and constants, the curve matches
+ * values worked out by hand from the shader's formula, and the 8-bit output agrees with the formula evaluated in
+ * single precision (GLSL highp) over a range of radiances. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,25 +29,36 @@ static char *read_text(const char *path)
 }
 
 /* The shader (run from the source tree, as every test) writes exactly the formula tonemap.h names. */
+/* Each file must hold each of its strings: the curve in tonecurve.glsl, and the two shaders that apply it. */
+static void expect_in(const char *path, const char *const *want, size_t n)
+{
+    char *src = read_text(path);
+    assert_non_null(src);
+    for (size_t i = 0; i < n; i++) {
+        if (!strstr(src, want[i]))
+            print_error("%s lacks: %s\n", path, want[i]);
+        assert_non_null(strstr(src, want[i]));
+    }
+    free(src);
+}
+
 static void test_shader_has_the_same_curve(void **st)
 {
     (void)st;
-    char *src = read_text("shaders_gles/tonemap.frag");
-    assert_non_null(src);
-    const char *want[] = {
-        "max(c.rgb * u_exposure / u_white, vec3(0.0))",
+    const char *curve[] = {
+        "x = max(x, vec3(0.0));",
         "clamp(x * (" STR(CU_TONEMAP_A) " * x + " STR(CU_TONEMAP_B) ") / (x * (" STR(CU_TONEMAP_C) " * x + " STR(
             CU_TONEMAP_D) ") + " STR(CU_TONEMAP_E) "), 0.0, 1.0)",
         "mix(" STR(CU_SRGB_LINEAR) " * c, " STR(CU_SRGB_SCALE) " * pow(c, vec3(1.0 / " STR(CU_SRGB_GAMMA) ")) - " STR(
             CU_SRGB_OFFSET) ", step(vec3(" STR(CU_SRGB_KNEE) "), c))",
-        "o_color = vec4(srgb(t), 1.0);",
+        "return srgb(clamp(",
     };
-    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++) {
-        if (!strstr(src, want[i]))
-            print_error("shaders_gles/tonemap.frag lacks: %s\n", want[i]);
-        assert_non_null(strstr(src, want[i]));
-    }
-    free(src);
+    const char *tonemap[] = {"#include \"tonecurve.glsl\"",
+                             "o_color = vec4(tone_curve(c.rgb * u_exposure / u_white), 1.0);"};
+    const char *sky[] = {"#include \"tonecurve.glsl\"", "o_color = vec4(tone_curve(o_color.rgb), 1.0);"};
+    expect_in("shaders_gles/tonecurve.glsl", curve, sizeof curve / sizeof curve[0]);
+    expect_in("shaders_gles/tonemap.frag", tonemap, 2);
+    expect_in("shaders_gles/sky.frag", sky, 2);
 }
 
 /* Points worked out from the shader's formula (in double precision, independently of tonemap.c). */

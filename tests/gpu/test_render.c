@@ -169,6 +169,42 @@ static void test_empty_scene_is_sky(void **st)
     }
 }
 
+/* A frame with no cloud in view draws its sky straight into the output, tone-mapped in the same pass (frame.c); with
+ * a cloud in view the sky goes through the HDR target and the tone map. The sky above the cloud must not tell them
+ * apart: within 1/255 (the half-float target's rounding), on both back ends. */
+static void test_sky_alone_in_one_pass(void **st)
+{
+    (void)st;
+    static const char *const none[] = {"cloud.density=0", NULL};
+    const int w = 128, h = 96, rows = 12; /* the cloud starts lower (cumulus.scene's camera looks up at it) */
+    for (int b = 0; b < 2; b++) {
+        tr_ctx c;
+        if (tr_open(&c, backends[b], w, h, 0))
+            fail_msg("%s", c.err);
+        uint8_t *with = malloc((size_t)w * h * 4), *alone = malloc((size_t)w * h * 4);
+        if (tr_render(&c, "scenes/cumulus.scene", NULL))
+            fail_msg("%s", c.err);
+        tr_read_rgba8(&c, with);
+        if (tr_render(&c, "scenes/cumulus.scene", none))
+            fail_msg("%s", c.err);
+        tr_read_rgba8(&c, alone);
+        int worst = 0, differ = 0;
+        for (int i = 0; i < w * h * 4; i++) {
+            int d = abs((int)with[i] - (int)alone[i]);
+            differ += d > 0;
+            if (i < rows * w * 4 && d > worst)
+                worst = d;
+        }
+        printf("%s: sky above the cloud, one pass against two: max difference %d/255 over %d rows; %d values differ "
+               "in the whole frame\n", backend_names[b], worst, rows, differ);
+        assert_true(worst <= 1);
+        assert_true(differ > 100); /* the frames are not the same: one has the cloud */
+        free(with);
+        free(alone);
+        tr_close(&c);
+    }
+}
+
 static void test_furnace(void **st)
 {
     (void)st;
@@ -461,7 +497,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_beer_lambert_chords),   cmocka_unit_test(test_overlap_integrated_once),
-        cmocka_unit_test(test_empty_scene_is_sky),    cmocka_unit_test(test_no_nan_in_any_scene),
+        cmocka_unit_test(test_empty_scene_is_sky),    cmocka_unit_test(test_sky_alone_in_one_pass),    cmocka_unit_test(test_no_nan_in_any_scene),
         cmocka_unit_test(test_camera_into_cloud_is_continuous), cmocka_unit_test(test_reference_images),
         cmocka_unit_test(test_glory_and_fogbow),      cmocka_unit_test(test_furnace),
         cmocka_unit_test(test_segment_integration),

@@ -22,20 +22,21 @@ static const struct {
     int preset;        /* cu_preset whose settings come first */
     const char *more;  /* then these */
     const char *label;
+    int control;       /* 1: what the defaults replaced, shown but not on the curve (fastest_within skips it) */
 } KOL[] = {
-    {CU_PRESET_HIGH, "", "high"}, /* first: the time reference of every ratio (measure.c) */
-    {CU_PRESET_HIGH, "quality.segments=8", "high, 8 segments"},
-    {CU_PRESET_HIGH, "quality.segments=3", "high, 3 segments"},
-    {CU_PRESET_HIGH, "quality.segments=2", "high, 2 segments"},
-    {CU_PRESET_MEDIUM, "", "medium"},
-    {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments"},
-    {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments"},
-    {CU_PRESET_LOW, "", "low"},
-    {CU_PRESET_HIGH, "quality.noise_baked=off", "high, exact noise"},
-    {CU_PRESET_HIGH, "quality.boundary_step=0", "high, no boundary knots"},
+    {CU_PRESET_HIGH, "", "high", 0}, /* first: the time reference of every ratio (measure.c) */
+    {CU_PRESET_HIGH, "quality.segments=8", "high, 8 segments", 0},
+    {CU_PRESET_HIGH, "quality.segments=3", "high, 3 segments", 0},
+    {CU_PRESET_HIGH, "quality.segments=2", "high, 2 segments", 0},
+    {CU_PRESET_MEDIUM, "", "medium", 0},
+    {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments", 0},
+    {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments", 0},
+    {CU_PRESET_LOW, "", "low", 0},
+    {CU_PRESET_HIGH, "quality.noise_baked=off", "high, exact noise", 1},
+    {CU_PRESET_HIGH, "quality.boundary_step=0", "high, no boundary knots", 1},
     {CU_PRESET_HIGH, "quality.noise_baked=off;quality.boundary_step=0",
-     "high as before (exact noise, no boundary knots)"},
-    {CU_PRESET_MEDIUM, "quality.noise_baked=off;quality.boundary_step=0", "medium as before"},
+     "high as before (exact noise, no boundary knots)", 1},
+    {CU_PRESET_MEDIUM, "quality.noise_baked=off;quality.boundary_step=0", "medium as before", 1},
 };
 #define N_KOL ((int)(sizeof KOL / sizeof KOL[0]))
 /* The uniform march: steps along the view x steps toward the sun, with the baked noise (the default; what a
@@ -50,7 +51,7 @@ static const struct {
 #define N_CFG (N_KOL + N_UNI)
 
 typedef struct mpoint {
-    int family;
+    int family, control;
     char label[80];
     config c;
 } mpoint;
@@ -60,6 +61,7 @@ static void make_points(mpoint *pt)
     int n = 0;
     for (int i = 0; i < N_KOL; i++, n++) {
         pt[n].family = FAM_KOL;
+        pt[n].control = KOL[i].control;
         snprintf(pt[n].label, sizeof pt[n].label, "%s", KOL[i].label);
         config_high(&pt[n].c);
         snprintf(pt[n].c.extra, SW_EXTRA_LEN, "%s%s%s", cu_preset_settings((cu_preset)KOL[i].preset),
@@ -67,6 +69,7 @@ static void make_points(mpoint *pt)
     }
     for (int i = 0; i < N_UNI; i++, n++) {
         pt[n].family = FAM_UNIFORM;
+        pt[n].control = !UNI[i].baked; /* the exact noise: the outside comparison's, beside the curve */
         snprintf(pt[n].label, sizeof pt[n].label, "uniform %d / %d%s", UNI[i].n, UNI[i].m,
                  UNI[i].baked ? "" : ", exact noise");
         config_high(&pt[n].c);
@@ -94,12 +97,14 @@ static int view_mask(sweep *sw, view *v)
     return rc;
 }
 
-/* The fastest point of family fam at least as accurate as error e (cloud relative RMSE); -1 if none is. */
+/* The fastest point of family fam (controls aside) at least as accurate as error e (cloud relative RMSE): the
+ * family's speed/accuracy curve at e. -1 if none is. */
 static int fastest_within(const mpoint *pt, const result *r, int fam, double e)
 {
     int best = -1;
     for (int i = 0; i < N_CFG; i++)
-        if (pt[i].family == fam && r[i].cloud_rel_rmse <= e && (best < 0 || r[i].time_ms < r[best].time_ms))
+        if (pt[i].family == fam && !pt[i].control && r[i].cloud_rel_rmse <= e &&
+            (best < 0 || r[i].time_ms < r[best].time_ms))
             best = i;
     return best;
 }
@@ -133,32 +138,44 @@ static void write_dat(FILE *f, const sweep *sw, const mpoint *pt, result *const 
         }
 }
 
-/* One view's rows of "time at equal error" (into f, unless NULL): each point of family fam against the fastest of the
- * other family that is at least as accurate. Returns how many had one; *worst gets the largest Kol / uniform time
- * ratio among them. */
-static int equal_error_rows(FILE *f, const mpoint *pt, const result *r, int fam, double *worst)
+/* One view's "time at equal error" (rows into f, unless NULL): at the error of every point on either curve (controls
+ * aside), each family's fastest point at least that accurate, and the ratio of their times where both reach it.
+ * Returns how many error levels both reach; *worst gets the largest Kol / uniform ratio among them. */
+static int equal_error_rows(FILE *f, const mpoint *pt, const result *r, double *worst)
 {
-    int other = !fam, n = 0;
-    for (int i = 0; i < N_CFG; i++) {
-        if (pt[i].family != fam)
-            continue;
-        int j = fastest_within(pt, r, other, r[i].cloud_rel_rmse);
-        if (j < 0) {
-            if (f)
-                    fprintf(f, "| %s | %.3f | %.3f | no %s point is as accurate | | |\n", pt[i].label,
-                        r[i].cloud_rel_rmse, r[i].time_ratio, FAMILY[other]);
-            continue;
+    int order[N_CFG], n = 0, both = 0;
+    for (int i = 0; i < N_CFG; i++)
+        if (!pt[i].control)
+            order[n++] = i;
+    for (int a = 1; a < n; a++) /* by error, the most accurate first */
+        for (int b = a; b > 0 && r[order[b - 1]].cloud_rel_rmse > r[order[b]].cloud_rel_rmse; b--) {
+            int t = order[b];
+            order[b] = order[b - 1];
+            order[b - 1] = t;
         }
-        double kol = fam == FAM_KOL ? r[i].time_ms : r[j].time_ms, uni = fam == FAM_KOL ? r[j].time_ms : r[i].time_ms;
-        double q = kol / uni;
-        if (n == 0 || q > *worst)
-            *worst = q;
-        n++;
-        if (f)
-            fprintf(f, "| %s | %.3f | %.3f | %s (%.3f) | %.3f | **%.2f** |\n", pt[i].label, r[i].cloud_rel_rmse,
-                r[i].time_ratio, pt[j].label, r[j].cloud_rel_rmse, r[j].time_ratio, q);
+    *worst = 0;
+    for (int a = 0; a < n; a++) {
+        double e = r[order[a]].cloud_rel_rmse;
+        int k = fastest_within(pt, r, FAM_KOL, e), u = fastest_within(pt, r, FAM_UNIFORM, e);
+        if (!f && (k < 0 || u < 0))
+            continue;
+        char kt[120], ut[120];
+        snprintf(kt, sizeof kt, k < 0 ? "none as accurate" : "%s (%.3f)", k < 0 ? "" : pt[k].label,
+                 k < 0 ? 0.0 : r[k].cloud_rel_rmse);
+        snprintf(ut, sizeof ut, u < 0 ? "none as accurate" : "%s (%.3f)", u < 0 ? "" : pt[u].label,
+                 u < 0 ? 0.0 : r[u].cloud_rel_rmse);
+        if (k >= 0 && u >= 0) {
+            double q = r[k].time_ms / r[u].time_ms;
+            *worst = both++ ? fmax(*worst, q) : q;
+            if (f)
+                fprintf(f, "| %.3f | %s | %.3f | %s | %.3f | **%.2f** |\n", e, kt, r[k].time_ratio, ut,
+                        r[u].time_ratio, q);
+        } else if (f) {
+            fprintf(f, "| %.3f | %s | %s | %s | %s | only %s |\n", e, kt, k < 0 ? "" : "", ut, "",
+                    k < 0 ? "the uniform march" : "Kol's method");
+        }
     }
-    return n;
+    return both;
 }
 
 static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *res)
@@ -175,21 +192,22 @@ static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *
                "N steps along the view x M toward the sun, octaves for multiple scattering.\n\n",
             sw->tw, sw->th, sw->frames, sw->warmup, lp ? lp : "(unset)", sw->ew, sw->eh, sw->spp);
     fprintf(f, "## Summary: Kol's time / the uniform march's time at equal error\n\n"
-               "For each point of one family, the fastest point of the other at least as accurate (cloud relative "
-               "RMSE); the largest ratio over the pairs found. Below 1: Kol's method is faster at every error level "
-               "both reach.\n\n| view | pairs | largest Kol / uniform | Kol's best error | uniform's best error |\n"
+               "Each family's curve at an error level: its fastest point at least that accurate (cloud relative "
+               "RMSE), controls aside (what this work's defaults replaced, and the uniform march with the exact "
+               "noise). At the error of every point of either curve that both curves reach, Kol's time over the "
+               "uniform march's; the largest of them and where. Below 1: Kol's curve lies left of the uniform "
+               "march's over the whole range both reach.\n\n"
+               "| view | error levels both reach | largest Kol / uniform | Kol's best error | uniform's best error |\n"
                "| --- | ---: | ---: | ---: | ---: |\n");
     for (int s = 0; s < sw->nviews; s++) {
-        double w1 = 0, w2 = 0;
-        int n1 = equal_error_rows(NULL, pt, res[s], FAM_UNIFORM, &w1);
-        int n2 = equal_error_rows(NULL, pt, res[s], FAM_KOL, &w2);
+        double worst = 0;
+        int levels = equal_error_rows(NULL, pt, res[s], &worst);
         double best[2] = {1e30, 1e30};
         for (int i = 0; i < N_CFG; i++)
-            if (res[s][i].cloud_rel_rmse < best[pt[i].family])
+            if (!pt[i].control && res[s][i].cloud_rel_rmse < best[pt[i].family])
                 best[pt[i].family] = res[s][i].cloud_rel_rmse;
-        double worst = n1 && n2 ? fmax(w1, w2) : n1 ? w1 : w2;
-        if (n1 + n2)
-            fprintf(f, "| %s | %d | %.2f | %.3f | %.3f |\n", sw->v[s].name, n1 + n2, worst, best[0], best[1]);
+        if (levels)
+            fprintf(f, "| %s | %d | %.2f | %.3f | %.3f |\n", sw->v[s].name, levels, worst, best[0], best[1]);
         else
             fprintf(f, "| %s | 0 | (no error level both reach) | %.3f | %.3f |\n", sw->v[s].name, best[0], best[1]);
     }
@@ -205,11 +223,10 @@ static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *
                     r->time_ms, r->time_ratio, r->cloud_rel_rmse, r->contrast, r->ssim, r->rel_rmse);
         }
         double w;
-        fprintf(f, "\nAt equal error (time / high of both; the last column Kol's time over the uniform march's):\n\n"
-                   "| point | its error | its time | the other family's fastest as accurate (its error) | its time | "
-                   "Kol / uniform |\n| --- | ---: | ---: | --- | ---: | ---: |\n");
-        equal_error_rows(f, pt, res[s], FAM_UNIFORM, &w);
-        equal_error_rows(f, pt, res[s], FAM_KOL, &w);
+        fprintf(f, "\nAt equal error (times / high; the last column Kol's time over the uniform march's):\n\n"
+                   "| error level | Kol's fastest as accurate (its error) | its time | the uniform march's (its error) | "
+                   "its time | Kol / uniform |\n| ---: | --- | ---: | --- | ---: | ---: |\n");
+        equal_error_rows(f, pt, res[s], &w);
     }
 }
 
