@@ -1,6 +1,6 @@
 #!/bin/sh
 # scripts/methods_plot.sh DIR: draws DIR/methods.png from DIR/methods.dat, which `cumulo-sweep --methods` writes
-# (columns: view index, family 0 = Kol's method / 1 = uniform ray march, time / high, cloud relative RMSE, contrast /
+# (columns: view index, family 0 = Kol's method / 1 = uniform ray march / 2, 3 = their controls, time / high, cloud relative RMSE, contrast /
 # the path tracer's, SSIM, "label", "view"): one panel a view, both families on the same axes. Needs gnuplot
 # (Debian: gnuplot-nox); without it says so and exits 3 (the tables are still there).
 set -e
@@ -29,7 +29,9 @@ cols=2; rows=$(( (n + 1) / 2 ))
     name=$(awk -v v="$v" '!/^#/ && $1 == v { n = $NF; gsub(/"/, "", n); print n; exit }' "$dat")
     echo "set title '$name'"
     echo "plot '$dat' using (\$1==$v && \$2==0 ? \$3 : 1/0):4 with points pt 7 ps 1.2 lc rgb '#cc3311' title \"Kol's method\", \\"
-    echo "     '' using (\$1==$v && \$2==1 ? \$3 : 1/0):4 with points pt 6 ps 1.2 lc rgb '#4477aa' title 'uniform march'"
+    echo "     '' using (\$1==$v && \$2==1 ? \$3 : 1/0):4 with points pt 6 ps 1.2 lc rgb '#4477aa' title 'uniform march', \\"
+    echo "     '' using (\$1==$v && \$2==2 ? \$3 : 1/0):4 with points pt 7 ps 0.8 lc rgb '#aaaaaa' title 'Kol, defaults before 2026-12-02', \\"
+    echo "     '' using (\$1==$v && \$2==3 ? \$3 : 1/0):4 with points pt 6 ps 0.8 lc rgb '#aaaaaa' title 'uniform, exact noise'"
   done
   echo "unset multiplot"
 } | gnuplot

@@ -127,12 +127,13 @@ static void write_csv(FILE *f, const sweep *sw, const mpoint *pt, result *const 
 
 static void write_dat(FILE *f, const sweep *sw, const mpoint *pt, result *const *res)
 {
-    fprintf(f, "# view_index family(0 kol, 1 uniform) time_ratio cloud_rel_rmse contrast_ratio ssim \"label\" "
-               "\"view\"\n");
+    fprintf(f, "# view_index family(0 kol, 1 uniform; 2, 3 their controls) time_ratio cloud_rel_rmse contrast_ratio "
+               "ssim \"label\" \"view\"\n");
     for (int s = 0; s < sw->nviews; s++)
         for (int i = 0; i < N_CFG; i++) {
             const result *r = &res[s][i];
-            fprintf(f, "%d %d %.5f %.5f %.4f %.4f \"%s\" \"%s\"\n", s, pt[i].family, r->time_ratio, r->cloud_rel_rmse,
+            fprintf(f, "%d %d %.5f %.5f %.4f %.4f \"%s\" \"%s\"\n", s, pt[i].family + 2 * pt[i].control,
+                    r->time_ratio, r->cloud_rel_rmse,
                     sw->v[s].ref_contrast > 0 ? r->contrast / sw->v[s].ref_contrast : 0, r->ssim, pt[i].label,
                     sw->v[s].name);
         }
