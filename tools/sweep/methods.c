@@ -32,6 +32,11 @@ static const struct {
     {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments", 0},
     {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments", 0},
     {CU_PRESET_LOW, "", "low", 0},
+    /* the slab model at its cheapest: few segments, small maps, a coarse hull */
+    {CU_PRESET_HIGH, "quality.segments=2;quality.sun_map_size=64;quality.hull_tessellation=6", "high, 2 segments, "
+     "64^2 maps, hull 6", 0},
+    {CU_PRESET_HIGH, "quality.segments=2;quality.sun_map_size=64;quality.hull_tessellation=6;light.sun_samples=16;"
+     "light.sun_intervals=2", "high, 2 segments, 64^2 maps, hull 6, 16 sun samples, 2 sun intervals", 0},
     {CU_PRESET_HIGH, "quality.noise_baked=off", "high, exact noise", 1},
     {CU_PRESET_HIGH, "quality.boundary_step=0", "high, no boundary knots", 1},
     {CU_PRESET_HIGH, "quality.noise_baked=off;quality.boundary_step=0",
