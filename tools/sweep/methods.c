@@ -124,7 +124,7 @@ static void write_csv(FILE *f, const sweep *sw, const mpoint *pt, result *const 
     for (int s = 0; s < sw->nviews; s++)
         for (int i = 0; i < N_CFG; i++) {
             const result *r = &res[s][i];
-            fprintf(f, "%s,%s,%s,\"%s\",%.3f,%.4f,%.5f,%.4f,%.4f,%.4f,%.5f,%.3f\n", sw->v[s].name,
+            fprintf(f, "%s,%s,\"%s\",\"%s\",%.3f,%.4f,%.5f,%.4f,%.4f,%.4f,%.5f,%.3f\n", sw->v[s].name,
                     FAMILY[pt[i].family], pt[i].label, pt[i].c.extra, r->time_ms, r->time_ratio, r->cloud_rel_rmse,
                     r->contrast, sw->v[s].ref_contrast, r->ssim, r->rel_rmse, r->psnr);
         }
