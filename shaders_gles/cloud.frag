@@ -5,8 +5,8 @@
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
-// inside), BOUNDARY_KNOTS (quality.boundary_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_* (ms_slab.glsl), ENERGY_PASS (the slab
-// model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
+// inside), BOUNDARY_KNOTS (quality.boundary_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_*
+// (ms_slab.glsl), ENERGY_PASS (the slab model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
 // clouds shade this one: their optical depth along the sun, pass_shadow.c), METHOD_UNIFORM (the mainstream uniform
 // ray march instead of Kol's segments: UNIFORM_STEPS along the view, UNIFORM_SUN_STEPS toward the sun at each).
 //

@@ -36,6 +36,8 @@ static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
     cu_gpu_scene *ctx = &r->ctx;
     if (!sl->vao)
         cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
+    if (r->scene.method == CU_METHOD_UNIFORM)
+        return 0; /* it marches toward the sun at every sample: no maps to make */
     if (sl->has_maps && sl->want_size <= sl->map_size)
         return 0; /* maps only grow: a cloud that recedes keeps its sharper maps (no churn at a size boundary) */
     if (sl->has_maps)
@@ -75,13 +77,10 @@ static int map_size_for(const cu_renderer *r, double pixels)
 static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
-    if (r->scene.method == CU_METHOD_UNIFORM) { /* it marches toward the sun at every sample: no maps to make */
-        if (!sl->vao)
-            cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
-        return 0;
-    }
     if (cloud_objects(r, sl, err))
         return 1;
+    if (r->scene.method == CU_METHOD_UNIFORM)
+        return 0;
     double c = v3_dot(sl->maps_sun, ctx->sky->sun_dir);
     int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
     int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);

@@ -212,8 +212,8 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
             return cu_fail(err, "noise: out of memory");
         r->noise_ready = 1;
     }
-    cu_upload_noise(ctx, &r->noise, r->scene.noise && r->scene.noise_baked ? r->scene.noise_octaves : 0);
-    if (cu_cloud_set_build(&r->clouds, &r->scene, &r->noise, err))
+    if (cu_upload_noise(ctx, &r->noise, r->scene.noise && r->scene.noise_baked ? r->scene.noise_octaves : 0, err) ||
+        cu_cloud_set_build(&r->clouds, &r->scene, &r->noise, err))
         return 1;
     r->clouds.wrap_cx = r->wrap_cx;
     r->clouds.wrap_cz = r->wrap_cz;

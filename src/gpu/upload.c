@@ -3,9 +3,12 @@
 #include "error.h"
 #include <stdlib.h>
 
-void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves)
+int cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
+    float *baked = NULL;
+    if (baked_octaves > 0 && !(baked = malloc(sizeof(float) * CU_NOISE_SIZE * CU_NOISE_SIZE * CU_NOISE_SIZE)))
+        return cu_fail(err, "noise: out of memory baking the octaves");
     gl->GenTextures(1, &ctx->noise_tex);
     gl->BindTexture(GL_TEXTURE_3D, ctx->noise_tex);
     gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -13,7 +16,6 @@ void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves)
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_REPEAT);
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    float *baked = baked_octaves > 0 ? malloc(sizeof(float) * CU_NOISE_SIZE * CU_NOISE_SIZE * CU_NOISE_SIZE) : NULL;
     if (baked) {
         /* quality.noise_baked: the octaves' weighted sum at level 0 (cu_noise_bake), R16F (filterable in GLES 3.0;
          * values in [0, 2] keep 11 bits); the shader reads it twice (density.glsl, NOISE_BAKED) */
@@ -23,10 +25,8 @@ void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves)
         gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, 0);
         free(baked);
-        return;
+        return 0;
     }
-    if (baked_octaves > 0) /* out of memory for the bake: the mip chain below, which the same shader cannot read */
-        cu_gpu_log(ctx, CU_LOG_ERROR, "noise: out of memory baking the octaves");
     for (int L = 0; L < CU_NOISE_LEVELS; L++) {
         int s = CU_NOISE_SIZE >> L;
         gl->TexImage3D(GL_TEXTURE_3D, L, GL_R8, s, s, s, 0, GL_RED, GL_UNSIGNED_BYTE, n->level[L]);
@@ -35,6 +35,7 @@ void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves)
      * level, NEAREST between levels: the shader always asks for whole LODs (eq. 3.74). */
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAX_LEVEL, CU_NOISE_LEVELS - 1);
+    return 0;
 }
 
 int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err)

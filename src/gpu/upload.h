@@ -6,8 +6,8 @@
 #include "phase.h"
 
 /* The noise's own mip levels as a 3-D texture, into ctx->noise_tex; or, with baked_octaves > 0 (quality.noise_baked),
- * that many octaves baked into one level (cu_noise_bake). */
-void cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves);
+ * that many octaves baked into one level (cu_noise_bake). 0, or 1 with a message. */
+int cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves, cu_error *err);
 /* The phase table (row 0: the chopped phase function, row 1: the removed peak), into ctx->phase_tex. */
 int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err);
 /* The hull mesh of ctx->scene's tessellation and an empty VAO for full-screen draws, into ctx's hull fields. */

@@ -149,6 +149,15 @@ void config_high(config *c)
     c->extra[0] = 0;
 }
 
+/* The next of a configuration's extra "key=value;..." settings at *p: where it starts (*at), its length, *p past it. */
+static size_t next_extra(const char **p, const char **at)
+{
+    size_t len = strcspn(*p, ";");
+    *at = *p;
+    *p += len + ((*p)[len] == ';');
+    return len;
+}
+
 /* All keys given explicitly, so a view's own quality lines do not leak in; quality.noise stays the view's choice
  * unless the knob says off. */
 int config_sets(const config *c, char sets[][64], double *scale)
@@ -168,11 +177,10 @@ int config_sets(const config *c, char sets[][64], double *scale)
                 snprintf(sets[n++], 64, "cloud.g=%s", MIE_G);
         }
     }
-    for (const char *p = c->extra; *p && n < SW_MAX_SETS;) { /* the extra settings, after the knobs' */
-        size_t len = strcspn(p, ";");
+    for (const char *p = c->extra, *at; *p && n < SW_MAX_SETS;) { /* the extra settings, after the knobs' */
+        size_t len = next_extra(&p, &at);
         if (len > 0 && len < 64)
-            snprintf(sets[n++], 64, "%.*s", (int)len, p);
-        p += len + (p[len] == ';');
+            snprintf(sets[n++], 64, "%.*s", (int)len, at);
     }
     return n;
 }
@@ -188,10 +196,9 @@ void config_diff(const config *c, char *out, size_t len, const char *sep)
                 name = "quality.noise"; /* the key it sets */
             n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%s=%s", n ? sep : "", name, val);
         }
-    for (const char *p = c->extra; *p;) {
-        size_t l = strcspn(p, ";");
-        n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%.*s", n ? sep : "", (int)l, p);
-        p += l + (p[l] == ';');
+    for (const char *p = c->extra, *at; *p;) {
+        size_t l = next_extra(&p, &at);
+        n += (size_t)snprintf(out + n, n < len ? len - n : 0, "%s%.*s", n ? sep : "", (int)l, at);
     }
     if (n == 0)
         snprintf(out, len, "high");
