@@ -10,6 +10,16 @@ t_expect() {
   if [ "$_got" -ne "$_rc" ]; then t_fail "$_n" "exit $_got, expected $_rc ($_err)"; return; fi
   case "$_err" in *"$_msg"*) t_ok "$_n" ;; *) t_fail "$_n" "stderr '$_err' lacks '$_msg'" ;; esac
 }
+# t_wait_line FILE TEXT SECONDS PID: waits until FILE holds TEXT (a program says it is ready, e.g. bound to its port),
+# at most SECONDS, and fails early when PID has exited; a fixed sleep instead races a slow start (sanitizers, load).
+t_wait_line() {
+  _w=0
+  while ! grep -qF "$2" "$1" 2>/dev/null; do
+    kill -0 "$4" 2>/dev/null || return 1
+    [ "$_w" -ge $(($3 * 10)) ] && return 1
+    sleep 0.1; _w=$((_w + 1))
+  done
+}
 t_summary() {
   echo "[  PASSED  ] $T_PASS test(s)."
   [ "$T_SKIP" -eq 0 ] || echo "[  SKIPPED ] $T_SKIP test(s)."

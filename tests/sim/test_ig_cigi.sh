@@ -27,7 +27,7 @@ fi
 $C ig $SCENE --input "cigi:127.0.0.1:$P,host=127.0.0.1:$Q" --size ${W}x$H --set camera.fov=$FOV $ORIGIN \
    --frame-timeout 60 --trace --save "$OUT/frames" --dump-scene "$OUT/dumped.scene" >"$OUT/ig.out" 2>"$OUT/ig.err" &
 IG=$!
-sleep 1
+t_wait_line "$OUT/ig.err" "cumulo ig: cigi 3.3 listen=" 120 $IG
 timeout 600 build/cigi_host "127.0.0.1:$P" $Q $W $H $FOV $LAT0 $LON0 $ALT0 >"$OUT/host.log" 2>"$OUT/host.err"
 hrc=$?
 sleep 1
@@ -125,7 +125,7 @@ P1=$((Q + 1)); Q1=$((Q + 2))
 $C ig $SCENE --input "cigi:127.0.0.1:$P1,host=127.0.0.1:$Q1,view=1" --size ${W}x$H --set camera.fov=$FOV $ORIGIN \
    --frame-timeout 60 --trace --save "$OUT/frames1" >"$OUT/ig1.out" 2>"$OUT/ig1.err" &
 IG=$!
-sleep 1
+t_wait_line "$OUT/ig1.err" "cumulo ig: cigi 3.3 listen=" 120 $IG
 timeout 600 build/cigi_host "127.0.0.1:$P1" $Q1 $W $H $FOV $LAT0 $LON0 $ALT0 >"$OUT/host1.log" 2>"$OUT/host1.err"
 hrc=$?
 sleep 1; kill -TERM $IG 2>/dev/null; wait $IG
@@ -141,7 +141,7 @@ f1=$(printf '%s/frames1/frame_%06d.png' "$OUT" "$(field frame "$(grep " host_fra
 seam=$(build/png_diff --columns "$(frame_png 24)" $((W - 1)) "$f1" 0); far=$(build/png_diff --columns "$(frame_png 24)" $((W - 1)) "$f1" $((W - 1)))
 if [ $hrc -eq 0 ] && [ -z "$bad" ] && awk -v s="${seam#mean=}" -v f="${far#mean=}" 'BEGIN { exit !(s < 0.5 * f) }'; then
   t_ok second_channel_meets_the_first
-else t_fail second_channel_meets_the_first "host exit $hrc;$bad seam $seam, far $far"; fi
+else t_fail second_channel_meets_the_first "host exit $hrc ($(tail -2 "$OUT/host1.err" "$OUT/ig1.err" | tr '\n' ' '));$bad seam $seam, far $far"; fi
 
 # Wireshark's decoder on the capture: the fields it reads are the ones the host meant and the IG sent.
 if [ -z "$CAP" ]; then

@@ -46,7 +46,7 @@ kill $HOLD 2>/dev/null; wait $HOLD 2>/dev/null
 # ---- FlightGear: 13 lines of a climb out of KSFO, and one bad line after them ----
 LAT0=37.6189; LON0=-122.375; ALT0=0
 ig fg "fg:127.0.0.1:$P" --set scene.origin_latitude=$LAT0 --set scene.origin_longitude=$LON0
-sleep 1
+t_wait_line "$OUT/fg.err" "cumulo ig: fg listen=" 120 $IG
 { cat tests/sim/data/fgfs_stream.txt; echo "37.7,-122.4,100,nan,0,0,2024,6,21,19,31,0,55"; } >"$OUT/fg_stream.txt"
 build/sim_replay fg "127.0.0.1:$P" "$OUT/fg_stream.txt" 150 >"$OUT/fg_replay.out" 2>&1; rrc=$?
 stop_ig; igrc=$?
