@@ -1,10 +1,10 @@
 #version 300 es
-// shaders_gles/sky.frag: background radiance: Preetham et al. 1999 analytic sky (Perez distribution of Y, x, y) or a
-// constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units);
+// shaders_gles/sky.frag: background radiance: Preetham et al. 1999 analytic sky (Perez distribution of Y, x, y, read
+// as the product of its zenith and sun factors from the tables of sky.c: cu_sky_tables) or a constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units);
 // with SKY_TONEMAP (a frame with no cloud in view) the display's colour straight away, as the tone map would make it.
 precision highp float;
-in vec2 v_ndc;
-uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
+precision highp sampler2D; // lowp by default in GLES fragment shaders: the tables need their full precision
+in vec4 v_near, v_far;         // the pixel's points on the near and far planes, homogeneous (sky.vert)
 uniform vec3 u_sun_dir;
 uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
 uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
@@ -37,9 +37,7 @@ uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_
 #if SKY_CONSTANT
 uniform vec3 u_sky_color;
 #else
-uniform float u_perez[15];     // A..E for Y, x, y
-uniform vec3 u_zenith;         // Y (kcd/m^2), x, y at the zenith
-uniform vec3 u_norm;           // F(0, theta_s) for Y, x, y
+uniform sampler2D u_sky_tables;// row 0: (Y, x, y)'s zenith factor at sqrt(cos theta); row 1: the sun's at sin(gamma/2)
 #endif
 out vec4 o_color;
 #ifndef SKY_TONEMAP
@@ -50,12 +48,14 @@ out vec4 o_color;
 #endif
 
 #if !SKY_CONSTANT
-float perez(int k, float cos_theta, float gamma, float cos_gamma)
+// Table row `row` at t in 0..1, interpolated here: RGBA32F, exact (fp16's rounding, amplified by the conversion from
+// xyY, would move the sky's colour by 0.3 %), and GLES 3.0 filters 32-bit float textures only with an extension.
+vec3 table(float t, int row)
 {
-    float A = u_perez[k * 5], B = u_perez[k * 5 + 1], C = u_perez[k * 5 + 2];
-    float D = u_perez[k * 5 + 3], E = u_perez[k * 5 + 4];
-    // cos_theta is clamped away from 0: the Perez term exp(B / cos theta) is singular at the horizon.
-    return (1.0 + A * exp(B / max(cos_theta, 0.01))) * (1.0 + C * exp(D * gamma) + E * cos_gamma * cos_gamma);
+    float f = t * float(SKY_TABLE - 1);
+    int i = min(int(f), SKY_TABLE - 2);
+    return mix(texelFetch(u_sky_tables, ivec2(i, row), 0).rgb, texelFetch(u_sky_tables, ivec2(i + 1, row), 0).rgb,
+               f - float(i));
 }
 vec3 xyY_to_rgb(float x, float y, float Y)
 {
@@ -68,8 +68,7 @@ vec3 xyY_to_rgb(float x, float y, float Y)
 void main()
 {
     // The ray's direction from two depths (a perspective ray through the origin, or an orthographic view's one).
-    vec4 w0 = u_inv_viewproj * vec4(v_ndc, -1.0, 1.0), w1 = u_inv_viewproj * vec4(v_ndc, 1.0, 1.0);
-    vec3 dir = normalize(w1.xyz / w1.w - w0.xyz / w0.w);
+    vec3 dir = normalize(v_far.xyz / v_far.w - v_near.xyz / v_near.w);
     vec3 L;
 #if SKY_CONSTANT
     L = u_sky_color; // uniform radiance from every direction, below the horizon too (matches other renderers)
@@ -78,12 +77,9 @@ void main()
     if (dir.y < 0.0) {
         L = ground(dir);
     } else {
-        float cos_gamma = clamp(dot(dir, u_sun_dir), -1.0, 1.0);
-        float gamma = acos(cos_gamma);
-        float Y = u_zenith.x * perez(0, dir.y, gamma, cos_gamma) / u_norm.x;
-        float x = u_zenith.y * perez(1, dir.y, gamma, cos_gamma) / u_norm.y;
-        float y = u_zenith.z * perez(2, dir.y, gamma, cos_gamma) / u_norm.z;
-        L = max(xyY_to_rgb(x, y, Y), vec3(0.0));
+        float t_zenith = sqrt(dir.y), t_sun = sqrt(clamp(0.5 - 0.5 * dot(dir, u_sun_dir), 0.0, 1.0));
+        vec3 Yxy = table(t_zenith, 0) * table(t_sun, 1);
+        L = max(xyY_to_rgb(Yxy.y, Yxy.z, Yxy.x), vec3(0.0));
 #endif
         // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
         if (dot(dir, u_sun_dir) > 0.99998917)

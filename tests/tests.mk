@@ -36,8 +36,9 @@ $(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
-# gpu: renders through both headless back ends against references, closed forms and the CPU.
-$(foreach t,render extremes sunmap ms fallback field,\
+# gpu: renders through both headless back ends against references, closed forms and the CPU (test_sky: the sky pass
+# against the CPU's Preetham model).
+$(foreach t,render extremes sunmap ms fallback field sky,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.

@@ -3,10 +3,22 @@
 
 #define TOA_ILLUMINANCE 128.0 /* klx: solar illuminance outside the atmosphere; the sun is taken as white there */
 
-static double perez_f(const double *c, double cos_theta, double gamma)
+/* The Perez function's two factors: of the zenith angle, then of the angle to the sun. cos theta is clamped away
+ * from 0: exp(B / cos theta) is singular at the horizon. */
+static double perez_zenith(const double *c, double cos_theta)
 {
     double ct = cos_theta > 0.01 ? cos_theta : 0.01;
-    return (1.0 + c[0] * exp(c[1] / ct)) * (1.0 + c[2] * exp(c[3] * gamma) + c[4] * cos(gamma) * cos(gamma));
+    return 1.0 + c[0] * exp(c[1] / ct);
+}
+
+static double perez_sun(const double *c, double gamma)
+{
+    return 1.0 + c[2] * exp(c[3] * gamma) + c[4] * cos(gamma) * cos(gamma);
+}
+
+static double perez_f(const double *c, double cos_theta, double gamma)
+{
+    return perez_zenith(c, cos_theta) * perez_sun(c, gamma);
 }
 
 static void xyY_to_rgb(double x, double y, double Y, double out[3])
@@ -34,6 +46,20 @@ void cu_sky_radiance(const cu_sky *sky, const cu_scene *s, vec3 dir, double out[
     for (int k = 0; k < 3; k++)
         v[k] = sky->zenith[k] * perez_f(sky->perez + 5 * k, dir.y, gamma) / sky->norm[k];
     xyY_to_rgb(v[1], v[2], v[0], out);
+}
+
+void cu_sky_tables(const cu_sky *sky, float zenith_part[4 * CU_SKY_TABLE], float sun_part[4 * CU_SKY_TABLE])
+{
+    for (int i = 0; i < CU_SKY_TABLE; i++) {
+        double t = (double)i / (CU_SKY_TABLE - 1);
+        double gamma = 2.0 * asin(t);
+        for (int k = 0; k < 3; k++) {
+            const double *c = sky->perez + 5 * k;
+            zenith_part[4 * i + k] = (float)(sky->zenith[k] / sky->norm[k] * perez_zenith(c, t * t));
+            sun_part[4 * i + k] = (float)perez_sun(c, gamma);
+        }
+        zenith_part[4 * i + 3] = sun_part[4 * i + 3] = 1.0f;
+    }
 }
 
 void cu_sky_compute(cu_sky *sky, const cu_scene *s)

@@ -22,6 +22,15 @@ typedef struct cu_sky {
 void cu_sky_compute(cu_sky *sky, const cu_scene *s);
 /* Sky radiance (linear RGB) in a unit direction with y >= 0, as the shader computes it (without the sun disk). */
 void cu_sky_radiance(const cu_sky *sky, const cu_scene *s, vec3 dir, double out[3]);
+/* The Perez distribution F(theta, gamma) is a product of a function of the zenith angle theta and one of the angle
+ * gamma to the sun, so the sky shader reads each factor from a table and multiplies (sky.frag): two fetches a pixel
+ * instead of six exponentials and an arc cosine. Entry i of zenith_part holds, for Y, x and y, the zenith value over
+ * F(0, theta_s) times (1 + A exp(B / cos theta)) at sqrt(cos theta) = i / (CU_SKY_TABLE - 1); entry i of sun_part
+ * holds 1 + C exp(D gamma) + E cos^2 gamma at sin(gamma / 2) = i / (CU_SKY_TABLE - 1). Both RGBA (A = 1); their
+ * product is what cu_sky_radiance converts to RGB. Both spacings put the entries where the factors bend (the horizon,
+ * the sun). */
+#define CU_SKY_TABLE 256
+void cu_sky_tables(const cu_sky *sky, float zenith_part[4 * CU_SKY_TABLE], float sun_part[4 * CU_SKY_TABLE]);
 /* White balance for display, like a camera set to daylight: the RGB colour of the sun's irradiance for a sun 60
  * degrees high (turbidity 2.5), scaled to unit luminance (clouds are lit mostly by the sun). A midday cloud is white; a low sun
  * still looks warm. With a scene that gives its own sun irradiance or a constant sky, no balance is applied. */

@@ -8,25 +8,49 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
 {
     cu_sun_locs_get(gl, prog, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
-    LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color); LOC(perez);
-    LOC(zenith); LOC(norm); LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
+    LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color);
+    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
 #undef LOC
     cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
+    cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     memset(p, 0, sizeof *p);
-    char out_defs[2048];
-    if (snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defines) >= (int)sizeof out_defs)
+    char defs[2048], out_defs[2048];
+    if (snprintf(defs, sizeof defs, "%s#define SKY_TABLE %d\n", defines, CU_SKY_TABLE) >= (int)sizeof defs ||
+        snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defs) >= (int)sizeof out_defs)
         return cu_fail(err, "sky: shader defines too long");
-    if (!(p->prog = cu_gl_program(gl, "fullscreen.vert", "sky.frag", defines, err)) ||
-        !(p->prog_out = cu_gl_program(gl, "fullscreen.vert", "sky.frag", out_defs, err)))
+    if (!(p->prog = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)) ||
+        !(p->prog_out = cu_gl_program(gl, "sky.vert", "sky.frag", out_defs, err)))
         return 1;
     locs_get(gl, p->prog, &p->hdr);
     locs_get(gl, p->prog_out, &p->out);
+    gl->GenTextures(1, &p->tables);
+    gl->BindTexture(GL_TEXTURE_2D, p->tables);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return 0;
+}
+
+/* The Perez tables for this sky, rebuilt only when its coefficients changed (the sun moved, the turbidity changed):
+ * 2 x 256 entries on the CPU and an 8 KiB upload. RGBA32F, read with texelFetch and interpolated in sky.frag. */
+static void tables_update(cu_pass_sky *p, const cu_gl *gl, const cu_sky *sky)
+{
+    double of[21];
+    memcpy(of, sky->perez, sizeof sky->perez);
+    memcpy(of + 15, sky->zenith, sizeof sky->zenith);
+    memcpy(of + 18, sky->norm, sizeof sky->norm);
+    if (p->tables_built && !memcmp(of, p->tables_of, sizeof of))
+        return;
+    float t[2 * 4 * CU_SKY_TABLE];
+    cu_sky_tables(sky, t, t + 4 * CU_SKY_TABLE);
+    gl->BindTexture(GL_TEXTURE_2D, p->tables);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, CU_SKY_TABLE, 2, 0, GL_RGBA, GL_FLOAT, t);
+    memcpy(p->tables_of, of, sizeof of);
+    p->tables_built = 1;
 }
 
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
@@ -35,10 +59,13 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
         gl->DeleteProgram(p->prog);
     if (p->prog_out)
         gl->DeleteProgram(p->prog_out);
-    p->prog = p->prog_out = 0;
+    if (p->tables)
+        gl->DeleteTextures(1, &p->tables);
+    p->prog = p->prog_out = p->tables = 0;
+    p->tables_built = 0;
 }
 
-void cu_pass_sky_draw(const cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
+void cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
 {
     const cu_gl *gl = ctx->gl;
     const cu_sky *sky = ctx->sky;
@@ -65,12 +92,10 @@ void cu_pass_sky_draw(const cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_o
     if (s->sky_model == CU_SKY_CONSTANT) {
         gl->Uniform3f(p->sky_color, (float)s->sky_color[0], (float)s->sky_color[1], (float)s->sky_color[2]);
     } else {
-        float pz[15];
-        for (int i = 0; i < 15; i++)
-            pz[i] = (float)sky->perez[i];
-        gl->Uniform1fv(p->perez, 15, pz);
-        gl->Uniform3f(p->zenith, (float)sky->zenith[0], (float)sky->zenith[1], (float)sky->zenith[2]);
-        gl->Uniform3f(p->norm, (float)sky->norm[0], (float)sky->norm[1], (float)sky->norm[2]);
+        tables_update(pass, gl, sky);
+        gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SKY);
+        gl->BindTexture(GL_TEXTURE_2D, pass->tables);
+        gl->ActiveTexture(GL_TEXTURE0);
     }
     gl->BindVertexArray(ctx->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);

@@ -1,12 +1,13 @@
-/* src/gpu/pass_sky.h: the sky pass: one full-screen triangle of analytic sky (Preetham) or constant sky, the sun
- * disk and the ground, under the clouds (shaders_gles/sky.frag). */
+/* src/gpu/pass_sky.h: the sky pass: one full-screen triangle of analytic sky (Preetham, through the Perez tables of
+ * cu_sky_tables, rebuilt when the sky changes) or constant sky, the sun disk and the ground, under the clouds
+ * (shaders_gles/sky.frag). */
 #ifndef CU_PASS_SKY_H
 #define CU_PASS_SKY_H
 #include "gpu_scene.h"
 
 typedef struct cu_sky_locs {
     cu_sun_locs sun;
-    GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color, perez, zenith, norm;
+    GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color;
     GLint ground_sun, eye, gmap, shadow_g;
 } cu_sky_locs;
 
@@ -15,10 +16,13 @@ typedef struct cu_sky_locs {
 typedef struct cu_pass_sky {
     GLuint prog, prog_out;
     cu_sky_locs hdr, out;
+    GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
+    double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
+    int tables_built;
 } cu_pass_sky;
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
 /* Draws into the bound target, for the directions of ctx->camera: radiance, or (to_output) tone-mapped colour. */
-void cu_pass_sky_draw(const cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output);
+void cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output);
 #endif

@@ -2,7 +2,8 @@
 # tools/bench/frame_costs.sh: what a frame costs when no cloud is on screen and when the sun moves every frame (issue
 # 14's targets: at most 0.10x and 1.2x of the still cloud view), for each preset and for the uniform ray march, on
 # the default cumulus: the cloud view; the camera turned away from the cloud (look_at behind it); the sun turned
-# 0.01 degree every frame (cumulo bench --sun-every-frame). Rounds interleaved (every case once a round), medians over
+# 0.01 degree every frame (cumulo bench --sun-every-frame). 20 frames after 5 warm-up ones (a cheap frame's first
+# few run slower: llvmpipe's threads and caches warming). Rounds interleaved (every case once a round), medians over
 # rounds, ratios to the cloud view in the same run. Prints a Markdown table.
 # Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
 set -eu
@@ -23,9 +24,9 @@ sets() {
 }
 time_of() { # CONFIG CASE; the empty view looks away from the cloud (it is behind the camera)
   case $2 in
-    empty) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") --set "camera.look_at=0 150 -2400" ;;
-    sun) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") --sun-every-frame ;;
-    *) $C bench $S --size "$SIZE" --frames 5 --warmup 2 $(sets "$1") ;;
+    empty) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --set "camera.look_at=0 150 -2400" ;;
+    sun) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-every-frame ;;
+    *) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") ;;
   esac | sed -n 's/.*FrameTime: \([0-9.]*\) ms.*/\1/p' | head -1
 }
 r=1
