@@ -76,7 +76,18 @@ uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (sc
 uniform float u_ms_g;          // anisotropy of the octave phase functions
 uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
 uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
-out vec4 o_color;
+uniform vec4 u_px_map;         // this pass's pixel -> the cloud image's: xy * u_px_map.xy + u_px_map.zw (temporal_grid)
+layout(location = 0) out vec4 o_color;
+#if TEMPORAL && !ENERGY_PASS
+// For the reprojection of the next frames (pass_temporal.c), premultiplied like the colour so clouds composite:
+// alpha times the distance to where the ray enters the cloud (m) and times how far the cloud moved since the last
+// frame (x, z, m), and alpha.
+layout(location = 1) out vec4 o_depth;
+uniform vec2 u_motion;
+#define DEPTH_OUT(a, d) o_depth = (a) * vec4(d, u_motion, 1.0)
+#else
+#define DEPTH_OUT(a, d)
+#endif
 
 // A fragment with no cloud on its ray. Full screen it is discarded; a hull fragment instead writes transparent black
 // (a no-op under the premultiplied blend): a shader that can discard makes llvmpipe and tilers run it before the
@@ -84,7 +95,7 @@ out vec4 o_color;
 #if FULLSCREEN
 #define NO_CLOUD discard
 #else
-#define NO_CLOUD { o_color = vec4(0.0); return; }
+#define NO_CLOUD { o_color = vec4(0.0); DEPTH_OUT(0.0, 0.0); return; }
 #endif
 
 vec3 phase_table(float cos_theta, int row)
@@ -235,7 +246,8 @@ void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, in
         return;
     float dt = (b - a) / float(UNIFORM_STEPS);
     // interleaved gradient noise (Jimenez 2014): a fixed offset per pixel, so a still picture is stable
-    float jit = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+    float jit = fract(52.9829189 * fract(dot(gl_FragCoord.xy * u_px_map.xy + u_px_map.zw,
+                                             vec2(0.06711056, 0.00583715))));
     vec3 J = mix(u_ground_rad, u_sky_rad, 0.5);
     float taup = 0.0;
     for (int i = 0; i < UNIFORM_STEPS; i++) {
@@ -483,4 +495,5 @@ void main()
     L += vec3(dot(u_ms_gain, Lms));
 #endif
     o_color = vec4(min((u_sun_irr * L + amb) * u_out_scale, vec3(u_out_max)), alpha);
+    DEPTH_OUT(alpha, t_base + max(hit_t0[0], 0.0));
 }

@@ -26,6 +26,12 @@ float dist_at(ivec2 p)
 void main()
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
+    if (u_factor == 1) { // the temporal grid's image at the frame's size: a copy
+        o_color = texelFetch(u_low, p, 0);
+        if (o_color.a <= 0.0 && all(equal(o_color.rgb, vec3(0.0))))
+            discard;
+        return;
+    }
     ivec2 lsize = textureSize(u_low, 0);
     float n = float(u_factor);
     // this pixel's centre in low-resolution texel units, the four texels about it and the bilinear weights

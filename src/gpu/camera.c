@@ -129,6 +129,8 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
      * clouds are (an empty scene is bit-for-bit the sky). */
     mat4 rot = local;
     rot.m[12] = rot.m[13] = rot.m[14] = 0.0;
-    m4_to_float(m4_inverse(m4_mul(with_depth_row(proj, ortho, 1.0, 2.0), rot)), c->inv_rot);
+    mat4 rot_vp = m4_mul(with_depth_row(proj, ortho, 1.0, 2.0), rot);
+    m4_to_float(rot_vp, c->rot_vp);
+    m4_to_float(m4_inverse(rot_vp), c->inv_rot);
     return 0;
 }

@@ -199,6 +199,67 @@ static void energy_closure(cu_renderer *r, int visible)
     r->sun_dirty = 0;
 }
 
+/* The cloud pass draws every pixel of the cloud image, with no motion to record. */
+static void temporal_frame_identity(cu_gpu_scene *ctx)
+{
+    ctx->pass_w = ctx->pass_h = 0;
+    ctx->px_map[0] = ctx->px_map[1] = 1.0f;
+    ctx->px_map[2] = ctx->px_map[3] = 0.0f;
+    ctx->motion[0] = ctx->motion[1] = 0.0f;
+}
+
+/* quality.temporal_grid for this frame: G, or 1 where the grid cannot serve (said once a scene). */
+static int temporal_grid(cu_renderer *r, const cu_frame *f, int visible)
+{
+    if (r->scene.temporal_grid < 2 || !r->pass_temporal.prog || visible == 0)
+        return 1;
+    const char *why = f->depth_texture ? "the host gives its depth, which the reprojection would not follow"
+                      : r->pass_tonemap.hdr.format == GL_RGBA8 ? "no float render target to hold distances"
+                                                               : NULL;
+    if (!why)
+        return r->scene.temporal_grid;
+    if (!r->temporal_off_said)
+        cu_gpu_log(&r->ctx, CU_LOG_INFO, "quality.temporal_grid: every cloud pixel every frame: %s", why);
+    r->temporal_off_said = 1;
+    return 1;
+}
+
+/* The temporal grid's frame: the whole image when a camera is orthographic or inside a hull (the reprojection's
+ * distances mean nothing there), else one pixel a block, each cloud's camera shifted onto those pixels. */
+static int temporal_begin(cu_renderer *r, const cu_frame *f, int visible, int n, mat4 view, mat4 proj, int *sparse,
+                          cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    cu_pass_temporal *t = &r->pass_temporal;
+    int lw = (f->width + n - 1) / n, lh = (f->height + n - 1) / n, whole = 0, g = r->scene.temporal_grid;
+    cu_camera keep = ctx->camera;
+    const cu_cloud *keep_cloud = ctx->cloud;
+    for (int j = 0; j < visible; j++) {
+        ctx->camera = r->cams[r->order[j]];
+        ctx->cloud = &r->clouds.slot[r->order[j]].cloud;
+        whole |= ctx->camera.ortho || cu_pass_cloud_fullscreen(ctx);
+    }
+    ctx->camera = keep;
+    ctx->cloud = keep_cloud;
+    if (cu_pass_temporal_begin(t, ctx, lw, lh, g, r->pass_tonemap.hdr.format, whole, sparse, err))
+        return 1;
+    if (!*sparse)
+        return 0;
+    mat4 shifted = cu_pass_temporal_projection(t, proj, lw, lh);
+    double k = cu_hull_scale(r->scene.hull_tessellation);
+    for (int j = 0; j < visible; j++) {
+        cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
+        if (cu_camera_build(&r->cams[r->order[j]], view, shifted, sl->cloud.origin, sl->cloud.bound_radius * k, err))
+            return 1;
+    }
+    ctx->pass_w = t->sparse.width;
+    ctx->pass_h = t->sparse.height;
+    ctx->px_map[0] = ctx->px_map[1] = (float)g;
+    ctx->px_map[2] = (float)t->ox + 0.5f - 0.5f * (float)g;
+    ctx->px_map[3] = (float)t->oy + 0.5f - 0.5f * (float)g;
+    return 0;
+}
+
 static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
 {
     cu_gl *gl = &r->gl;
@@ -212,6 +273,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     ctx->height = f->height;
     ctx->host_depth.tex = f->depth_texture;
     ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
+    temporal_frame_identity(ctx);
     cu_profile_begin(r);
     int visible = visible_clouds(r, view, proj, err);
     if (visible < 0)
@@ -265,16 +327,24 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     cu_profile_mark(r, CU_PASS_SKY);
     /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them */
     int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
-    if (n > 1) {
+    int g = temporal_grid(r, f, visible), sparse = 0;
+    cu_camera view_cam = ctx->camera; /* the view's own, at the world origin: what the temporal grid reprojects */
+    if (g > 1) {
+        if (temporal_begin(r, f, visible, n, view, proj, &sparse, err))
+            return 1;
+    } else if (n > 1) {
         if (cu_pass_upsample_begin(&r->pass_upsample, ctx, f->width, f->height, n, r->pass_tonemap.hdr.format, err))
             return 1;
     }
     ctx->host_scale = n;
+    double dt = g > 1 ? r->time - r->pass_temporal.prev_time : 0.0;
     for (int j = 0; j < visible; j++) {
         cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
         cu_frame_bind_cloud(r, sl);
         sl->cloud.ke = sl->ke_rest;
         ctx->camera = r->cams[r->order[j]];
+        ctx->motion[0] = (float)(sl->wind.x * dt);
+        ctx->motion[1] = (float)(sl->wind.z * dt);
         if (j > 0) /* each cloud's depth pre-pass and stencil of its own */
             gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
         int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
@@ -285,8 +355,15 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (visible == 0)
         ctx->camera.visible = 0;
     cu_profile_mark(r, CU_PASS_CLOUDS);
-    if (n > 1) {
-        cu_pass_upsample_draw(&r->pass_upsample, ctx, r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+    temporal_frame_identity(ctx);
+    if (g > 1) {
+        cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time);
+        cu_pass_upsample_draw(&r->pass_upsample, ctx, cu_pass_temporal_image(&r->pass_temporal),
+                              r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+        cu_profile_mark(r, CU_PASS_UPSAMPLE);
+    } else if (n > 1) {
+        cu_pass_upsample_draw(&r->pass_upsample, ctx, r->pass_upsample.low.tex[0], r->pass_tonemap.hdr.fbo, f->width,
+                              f->height, n, proj.m);
         cu_profile_mark(r, CU_PASS_UPSAMPLE);
     }
     ctx->ke_scale = 1;

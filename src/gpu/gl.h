@@ -31,8 +31,8 @@
     X(ShaderSource, SHADERSOURCE) X(StencilFunc, STENCILFUNC) X(StencilFuncSeparate, STENCILFUNCSEPARATE) \
     X(StencilMaskSeparate, STENCILMASKSEPARATE) X(StencilOp, STENCILOP) X(StencilOpSeparate, STENCILOPSEPARATE) \
     X(TexImage2D, TEXIMAGE2D) X(TexImage3D, TEXIMAGE3D) X(TexParameteri, TEXPARAMETERI) \
-    X(Uniform1f, UNIFORM1F) X(Uniform1fv, UNIFORM1FV) X(Uniform1i, UNIFORM1I) X(Uniform2f, UNIFORM2F) \
-    X(Uniform3f, UNIFORM3F) X(Uniform3fv, UNIFORM3FV) X(Uniform4fv, UNIFORM4FV) \
+    X(Uniform1f, UNIFORM1F) X(Uniform1fv, UNIFORM1FV) X(Uniform1i, UNIFORM1I) X(Uniform2f, UNIFORM2F) X(Uniform2i, UNIFORM2I) \
+    X(Uniform3f, UNIFORM3F) X(Uniform3fv, UNIFORM3FV) X(Uniform4f, UNIFORM4F) X(Uniform4fv, UNIFORM4FV) \
     X(UniformMatrix4fv, UNIFORMMATRIX4FV) X(UseProgram, USEPROGRAM) X(VertexAttribDivisor, VERTEXATTRIBDIVISOR) \
     X(VertexAttribPointer, VERTEXATTRIBPOINTER) X(Viewport, VIEWPORT)
 

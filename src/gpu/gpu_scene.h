@@ -46,6 +46,7 @@ typedef struct cu_camera {
     int near_cuts;           /* 1: the host's near plane (orthographic) cuts the clouds' bounds */
     float vp[16], inv_vp[16];/* the host's x, y, w rows with cumulo's depth row */
     float inv_rot[16];       /* clip space to directions, the camera at the origin: the sky's */
+    float rot_vp[16];        /* its inverse: directions (or points about the eye) to clip space */
     float host_inv_vp[16];   /* the host's own clip space to cloud-local: unprojects its depth texture */
 } cu_camera;
 
@@ -86,6 +87,13 @@ typedef struct cu_gpu_scene {
     cu_host_depth host_depth;/* this frame's */
     int width, height;       /* this frame's size */
     int host_scale;          /* frame pixels per pixel of the pass drawing (quality.cloud_downsample), 1 or N */
+    /* quality.temporal_grid: the cloud pass draws one pixel of each G x G block into a target of its own (pass_w x
+     * pass_h; 0: the frame's, at 1/host_scale) with a projection shifted onto those pixels; px_map takes its pixels
+     * to the cloud image's (xy * px_map.xy + px_map.zw), motion is how far the cloud now drawn moved since the last
+     * frame (world x, z in m) */
+    int pass_w, pass_h;
+    float px_map[4];
+    float motion[2];
     cu_sun_maps sun;         /* published by the sun pass */
     GLuint sun_ext;          /* the cloud's shadow from other clouds (pass_shadow.c; a 1x1 zero when none) */
     GLuint ground_tau;       /* the ground's shadow map, 0 when none; its centre (x, z) and side (m) */

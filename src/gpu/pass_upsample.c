@@ -52,8 +52,8 @@ int cu_pass_upsample_begin(cu_pass_upsample *p, const cu_gpu_scene *ctx, int w, 
     return 0;
 }
 
-void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint hdr, int w, int h, int n,
-                           const double *proj)
+void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint hdr, int w, int h,
+                           int n, const double *proj)
 {
     const cu_gl *gl = ctx->gl;
     gl->BindFramebuffer(GL_FRAMEBUFFER, hdr);
@@ -76,7 +76,7 @@ void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, G
         gl->Uniform3f(p->lin, (float)proj[10], (float)proj[14], ortho ? 1.0f : 0.0f);
     }
     gl->ActiveTexture(GL_TEXTURE0);
-    gl->BindTexture(GL_TEXTURE_2D, p->low.tex[0]);
+    gl->BindTexture(GL_TEXTURE_2D, low);
     gl->BindVertexArray(ctx->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->Disable(GL_BLEND);

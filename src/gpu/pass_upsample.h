@@ -18,8 +18,9 @@ void cu_pass_upsample_destroy(cu_pass_upsample *p, const cu_gl *gl);
  * it cleared to transparent, with its viewport. */
 int  cu_pass_upsample_begin(cu_pass_upsample *p, const cu_gpu_scene *ctx, int w, int h, int n, GLenum format,
                             cu_error *err);
-/* Blends the low-resolution clouds over what `hdr` holds, at w x h. proj: the frame's projection (column-major),
- * whose z rows turn the host's window depth into distances when ctx has the host's depth. */
-void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint hdr, int w, int h, int n,
-                           const double *proj);
+/* Blends the low-resolution clouds (low: the target's own texture, or the temporal grid's image) over what `hdr`
+ * holds, at w x h. proj: the frame's projection (column-major), whose z rows turn the host's window depth into
+ * distances when ctx has the host's depth. */
+void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint hdr, int w, int h,
+                           int n, const double *proj);
 #endif

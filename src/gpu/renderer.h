@@ -10,6 +10,7 @@
 #include "pass_sky.h"
 #include "pass_slab.h"
 #include "pass_sun.h"
+#include "pass_temporal.h"
 #include "pass_tonemap.h"
 #include "pass_upsample.h"
 
@@ -43,7 +44,9 @@ struct cu_renderer {
     cu_pass_cloud pass_cloud;
     cu_pass_cloud pass_cloud_far; /* a field's clouds smaller on screen than quality.lod_pixels (none: prog 0) */
     cu_pass_tonemap pass_tonemap;
-    cu_pass_upsample pass_upsample; /* quality.cloud_downsample > 1: the clouds at 1/N resolution */
+    cu_pass_upsample pass_upsample; /* quality.cloud_downsample > 1 or temporal_grid > 1: the cloud image brought up */
+    cu_pass_temporal pass_temporal; /* quality.temporal_grid > 1 (prog 0 otherwise) */
+    int temporal_off_said;          /* the log line saying why the grid is not used this scene */
     cu_pass_shadow pass_shadow;
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */

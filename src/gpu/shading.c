@@ -14,7 +14,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
     LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear); LOC(host_scale);
-    LOC(shadow_g);
+    LOC(shadow_g); LOC(px_map); LOC(motion);
 #undef LOC
     cu_gpu_unit(gl, p, "u_sun_ext", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, p, "u_host_depth", CU_UNIT_HOST_DEPTH);
@@ -79,7 +79,12 @@ void cu_shading_frame(const cu_gpu_scene *ctx, const cu_shading_locs *l)
     gl->Uniform3f(l->view_dir, (float)c->view_dir.x, (float)c->view_dir.y, (float)c->view_dir.z);
     /* a pass at 1/N resolution: its pixel i is the frame's N (i + 1/2), whatever the rounding of its size */
     float px = (float)(ctx->host_scale > 0 ? ctx->host_scale : 1);
-    gl->Uniform2f(l->inv_viewport, px / (float)ctx->width, px / (float)ctx->height);
+    if (ctx->pass_w > 0) /* the temporal grid's own target, under its shifted projection */
+        gl->Uniform2f(l->inv_viewport, 1.0f / (float)ctx->pass_w, 1.0f / (float)ctx->pass_h);
+    else
+        gl->Uniform2f(l->inv_viewport, px / (float)ctx->width, px / (float)ctx->height);
+    gl->Uniform4f(l->px_map, ctx->px_map[0], ctx->px_map[1], ctx->px_map[2], ctx->px_map[3]);
+    gl->Uniform2f(l->motion, ctx->motion[0], ctx->motion[1]);
     gl->Uniform1i(l->host_depth_on, ctx->host_depth.tex != 0);
     gl->UniformMatrix4fv(l->host_inv_vp, 1, GL_FALSE, c->host_inv_vp);
     gl->Uniform1f(l->host_clear, ctx->host_depth.clear);
