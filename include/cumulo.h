@@ -133,7 +133,7 @@ typedef struct cu_frame {
     int clouds_only;
 } cu_frame;
 /* Draws one frame. Every GL state item listed in README "Embedding in your renderer" (framebuffer bindings,
- * program, vertex array, array buffer, renderbuffer, active texture and the textures and samplers of units 0-11,
+ * program, vertex array, array buffer, renderbuffer, active texture and the textures and samplers of units 0-13,
  * viewport, blend, depth, stencil, cull face, scissor, colour mask, clear values, pixel alignment) is as the host
  * left it when this returns; so do cu_renderer_create, cu_renderer_set_scene and cu_renderer_set_sun. */
 int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);

@@ -43,8 +43,31 @@ out vec4 o_color;
 #ifndef SKY_TONEMAP
 #define SKY_TONEMAP 0
 #endif
+#ifndef SKY_COMPOSITE
+#define SKY_COMPOSITE 0
+#endif
 #if SKY_TONEMAP
 #include "tonecurve.glsl"
+#endif
+#if SKY_COMPOSITE
+// The cloud image (quality.cloud_downsample, temporal_grid) composited over the sky here, on its way to the output:
+// one pass instead of the sky's, the upsampling's and the tone map's. Premultiplied, in the sky's exposed units;
+// bilinear from the four nearest of its texels, as upsample.frag does without a host depth.
+uniform highp sampler2D u_clouds;
+uniform float u_cloud_factor;  // output pixels per texel of the cloud image
+vec4 clouds_at(vec2 frag)
+{
+    vec2 q = frag / u_cloud_factor - 0.5;
+    ivec2 t0 = ivec2(floor(q)), size = textureSize(u_clouds, 0);
+    vec2 f = q - floor(q);
+    vec4 sum = vec4(0.0);
+    for (int k = 0; k < 4; k++) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        sum += w * texelFetch(u_clouds, clamp(t0 + o, ivec2(0), size - 1), 0);
+    }
+    return sum;
+}
 #endif
 
 #if !SKY_CONSTANT
@@ -86,6 +109,10 @@ void main()
             L += u_sun_irr / 6.8e-5;
     }
     o_color = vec4(min(L * u_out_scale, vec3(u_out_max)), 1.0);
+#if SKY_COMPOSITE
+    vec4 c = u_cloud_factor == 1.0 ? texelFetch(u_clouds, ivec2(gl_FragCoord.xy), 0) : clouds_at(gl_FragCoord.xy);
+    o_color.rgb = c.rgb + (1.0 - c.a) * o_color.rgb;
+#endif
 #if SKY_TONEMAP
     o_color = vec4(tone_curve(o_color.rgb), 1.0);
 #endif

@@ -58,6 +58,22 @@ void main()
     }
     // the fresh samples about this pixel: sample (i, j) sits at pixel G (i, j) + u_offset
     vec2 q = (gl_FragCoord.xy - 0.5 - vec2(u_offset)) / float(u_grid);
+    // the range of the fresh samples about the pixel, which history is held to when the view moved: where none of
+    // them sees a cloud, that is nothing, whatever the history (the sky: most of a frame, and cheap this way)
+    vec4 lo = vec4(3.0e38), hi = vec4(-3.0e38);
+    if (u_moved) {
+        ivec2 size = textureSize(u_fresh, 0), t0 = ivec2(floor(q));
+        for (int k = 0; k < 4; k++) {
+            vec4 c = texelFetch(u_fresh, clamp(t0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0);
+            lo = min(lo, c);
+            hi = max(hi, c);
+        }
+        if (hi == vec4(0.0)) {
+            o_color = vec4(0.0);
+            o_depth = vec4(0.0);
+            return;
+        }
+    }
     vec3 dir = normalize(v_far.xyz / v_far.w - v_near.xyz / v_near.w);
     // where this pixel's cloud was last frame: at the fresh sample's distance and motion (alpha-weighted over the
     // clouds along the ray); no cloud there: a direction, which the camera's translation does not move
@@ -80,14 +96,6 @@ void main()
         bilinear(u_hist, u_hist_depth, h, hc, hd);
     }
     if (u_moved) {
-        // the range of the fresh samples about the pixel
-        vec4 lo = vec4(3.0e38), hi = vec4(-3.0e38);
-        ivec2 size = textureSize(u_fresh, 0), t0 = ivec2(floor(q));
-        for (int k = 0; k < 4; k++) {
-            vec4 c = texelFetch(u_fresh, clamp(t0 + ivec2(k & 1, k >> 1), ivec2(0), size - 1), 0);
-            lo = min(lo, c);
-            hi = max(hi, c);
-        }
         vec4 clamped = clamp(hc, lo, hi);
         // what the clamp takes away from the history's coverage, its depth loses in proportion
         hd *= hc.a > 1.0e-6 ? clamped.a / hc.a : 0.0;

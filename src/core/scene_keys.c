@@ -149,8 +149,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         S(cloud_downsample)),
     /* 1..4: a 4 x 4 grid already waits 16 frames for each pixel's own ray */
     INT("quality", "temporal_grid", 1, "1", 1, 4, 0, "", "each frame marches one cloud pixel of every G x G block "
-        "(a Bayer order) and reprojects the others from the frames before (camera motion and wind); a still view "
-        "converges in G^2 frames; 1: every pixel every frame", S(temporal_grid)),
+        "(a Bayer order) and reprojects the others from the frame before (camera motion and wind); each pixel is "
+        "marched again within G^2 frames; 1: every pixel every frame", S(temporal_grid)),
     BOOL("quality", "cloud_shadows", "on", "clouds shade each other and the ground (needs half-float targets)",
          S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",

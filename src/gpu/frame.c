@@ -312,22 +312,27 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         GLenum e = gl->GetError();
         return e != GL_NO_ERROR ? cu_fail(err, "render: GL error 0x%x", e) : 0;
     }
-    gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
-    gl->Viewport(0, 0, f->width, f->height);
+    /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them; the
+     * temporal grid's image likewise. With neither the host's depth nor linear or clouds-only output, the sky pass
+     * brings them up itself, tone-mapped into the output: one full-screen pass instead of three. */
+    int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
+    int g = temporal_grid(r, f, visible), sparse = 0;
+    int over = (n > 1 || g > 1) && !f->linear && !f->clouds_only && !ctx->host_depth.tex;
     gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
     gl->Disable(GL_BLEND);
     gl->DepthMask(GL_TRUE);
     gl->ClearDepthf(1.0f);
     gl->ClearStencil(0);
     gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
-    gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
-    if (!f->clouds_only)
-        cu_pass_sky_draw(&r->pass_sky, ctx, 0);
+    if (!over) {
+        gl->BindFramebuffer(GL_FRAMEBUFFER, r->pass_tonemap.hdr.fbo);
+        gl->Viewport(0, 0, f->width, f->height);
+        /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
+        gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
+        if (!f->clouds_only)
+            cu_pass_sky_draw(&r->pass_sky, ctx, 0);
+    }
     cu_profile_mark(r, CU_PASS_SKY);
-    /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them */
-    int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
-    int g = temporal_grid(r, f, visible), sparse = 0;
     cu_camera view_cam = ctx->camera; /* the view's own, at the world origin: what the temporal grid reprojects */
     if (g > 1) {
         if (temporal_begin(r, f, visible, n, view, proj, &sparse, err))
@@ -356,17 +361,36 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         ctx->camera.visible = 0;
     cu_profile_mark(r, CU_PASS_CLOUDS);
     temporal_frame_identity(ctx);
+    GLuint image = 0;
     if (g > 1) {
         cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time);
-        cu_pass_upsample_draw(&r->pass_upsample, ctx, cu_pass_temporal_image(&r->pass_temporal),
-                              r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
-        cu_profile_mark(r, CU_PASS_UPSAMPLE);
+        image = cu_pass_temporal_image(&r->pass_temporal);
     } else if (n > 1) {
-        cu_pass_upsample_draw(&r->pass_upsample, ctx, r->pass_upsample.low.tex[0], r->pass_tonemap.hdr.fbo, f->width,
-                              f->height, n, proj.m);
-        cu_profile_mark(r, CU_PASS_UPSAMPLE);
+        image = r->pass_upsample.low.tex[0];
     }
     ctx->ke_scale = 1;
+    if (over) { /* visible > 0 here: n and g are 1 without a cloud in view */
+        cu_camera nearest = ctx->camera;
+        const cu_cloud *nearest_cloud = ctx->cloud;
+        ctx->camera = view_cam; /* the sky's camera and sun, as for the sky pass above */
+        ctx->cloud = &r->none;
+        cu_gpu_scene_set_sun(ctx);
+        gl->BindFramebuffer(GL_FRAMEBUFFER, f->fbo);
+        gl->Viewport(0, 0, f->width, f->height);
+        gl->Disable(GL_BLEND);
+        gl->Disable(GL_STENCIL_TEST);
+        gl->Disable(GL_DEPTH_TEST);
+        cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n);
+        ctx->camera = nearest;
+        ctx->cloud = nearest_cloud;
+        cu_profile_mark(r, CU_PASS_UPSAMPLE);
+        GLenum e = gl->GetError();
+        return e != GL_NO_ERROR ? cu_fail(err, "render: GL error 0x%x", e) : 0;
+    }
+    if (image) {
+        cu_pass_upsample_draw(&r->pass_upsample, ctx, image, r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+        cu_profile_mark(r, CU_PASS_UPSAMPLE);
+    }
     cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);
     cu_profile_mark(r, CU_PASS_TONEMAP);
     GLenum e = gl->GetError();

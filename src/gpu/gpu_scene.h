@@ -16,7 +16,8 @@ struct cu_collector;
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
        CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the
-       ground's in the sky pass */, CU_UNIT_SKY = 12 /* the sky pass's Perez tables */ };
+       ground's in the sky pass */, CU_UNIT_SKY = 12 /* the sky pass's Perez tables */,
+       CU_UNIT_CLOUDS = 13 /* the cloud image the sky pass composites (pass_sky.h: cu_pass_sky_draw_over) */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */

@@ -9,8 +9,9 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_sun_locs_get(gl, prog, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
     LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color);
-    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g);
+    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g); LOC(cloud_factor);
 #undef LOC
+    cu_gpu_unit(gl, prog, "u_clouds", CU_UNIT_CLOUDS);
     cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
@@ -19,15 +20,18 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
 {
     const cu_gl *gl = ctx->gl;
     memset(p, 0, sizeof *p);
-    char defs[2048], out_defs[2048];
+    char defs[2048], out_defs[2048], over_defs[2048];
     if (snprintf(defs, sizeof defs, "%s#define SKY_TABLE %d\n", defines, CU_SKY_TABLE) >= (int)sizeof defs ||
-        snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defs) >= (int)sizeof out_defs)
+        snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defs) >= (int)sizeof out_defs ||
+        snprintf(over_defs, sizeof over_defs, "%s#define SKY_COMPOSITE 1\n", out_defs) >= (int)sizeof over_defs)
         return cu_fail(err, "sky: shader defines too long");
     if (!(p->prog = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)) ||
-        !(p->prog_out = cu_gl_program(gl, "sky.vert", "sky.frag", out_defs, err)))
+        !(p->prog_out = cu_gl_program(gl, "sky.vert", "sky.frag", out_defs, err)) ||
+        !(p->prog_over = cu_gl_program(gl, "sky.vert", "sky.frag", over_defs, err)))
         return 1;
     locs_get(gl, p->prog, &p->hdr);
     locs_get(gl, p->prog_out, &p->out);
+    locs_get(gl, p->prog_over, &p->over);
     gl->GenTextures(1, &p->tables);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -59,20 +63,21 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
         gl->DeleteProgram(p->prog);
     if (p->prog_out)
         gl->DeleteProgram(p->prog_out);
+    if (p->prog_over)
+        gl->DeleteProgram(p->prog_over);
     if (p->tables)
         gl->DeleteTextures(1, &p->tables);
-    p->prog = p->prog_out = p->tables = 0;
+    p->prog = p->prog_out = p->prog_over = p->tables = 0;
     p->tables_built = 0;
 }
 
-void cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
+static void draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, const cu_sky_locs *p)
 {
     const cu_gl *gl = ctx->gl;
     const cu_sky *sky = ctx->sky;
     const cu_scene *s = ctx->scene;
-    const cu_sky_locs *p = to_output ? &pass->out : &pass->hdr;
     gl->Disable(GL_DEPTH_TEST);
-    gl->UseProgram(to_output ? pass->prog_out : pass->prog);
+    gl->UseProgram(prog);
     gl->UniformMatrix4fv(p->inv_viewproj, 1, GL_FALSE, ctx->camera.inv_rot);
     cu_sun_uniforms(ctx, &p->sun);
     gl->Uniform3f(p->sun_irr, (float)sky->sun_irradiance[0], (float)sky->sun_irradiance[1],
@@ -99,4 +104,20 @@ void cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
     }
     gl->BindVertexArray(ctx->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
+{
+    draw(pass, ctx, to_output ? pass->prog_out : pass->prog, to_output ? &pass->out : &pass->hdr);
+}
+
+void cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor)
+{
+    const cu_gl *gl = ctx->gl;
+    gl->UseProgram(pass->prog_over);
+    gl->Uniform1f(pass->over.cloud_factor, (float)factor);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_CLOUDS);
+    gl->BindTexture(GL_TEXTURE_2D, clouds);
+    gl->ActiveTexture(GL_TEXTURE0);
+    draw(pass, ctx, pass->prog_over, &pass->over);
 }

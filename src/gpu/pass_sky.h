@@ -8,14 +8,15 @@
 typedef struct cu_sky_locs {
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color;
-    GLint ground_sun, eye, gmap, shadow_g;
+    GLint ground_sun, eye, gmap, shadow_g, cloud_factor;
 } cu_sky_locs;
 
 /* prog draws radiance into the HDR target under the clouds; prog_out, for a frame with no cloud in view, the
- * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two). */
+ * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two);
+ * prog_over the same with a cloud image composited on the way. */
 typedef struct cu_pass_sky {
-    GLuint prog, prog_out;
-    cu_sky_locs hdr, out;
+    GLuint prog, prog_out, prog_over;
+    cu_sky_locs hdr, out, over;
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
     int tables_built;
@@ -25,4 +26,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
 /* Draws into the bound target, for the directions of ctx->camera: radiance, or (to_output) tone-mapped colour. */
 void cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output);
+/* prog_over: the sky with a cloud image (1/factor of the frame's size, premultiplied) over it, tone-mapped, into the
+ * bound target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. */
+void cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor);
 #endif

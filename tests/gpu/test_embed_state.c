@@ -14,7 +14,7 @@
 #include "renderer.h"
 #include "scene_camera.h"
 
-#define UNITS 13 /* the texture units cumulo's contract covers */
+#define UNITS 14 /* the texture units cumulo's contract covers */
 
 /* The contract's items, as the host would read them with glGet, flattened into out; returns how many. */
 static int gl_state(GLint *out, int max)

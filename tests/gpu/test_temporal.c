@@ -86,8 +86,11 @@ static void set_scene(tr_ctx *c, const cu_scene *s)
 
 /* Renders the path whole (references) and with the grid; returns the worst PSNR over frames first..n-1 and, in
  * *gain, the least by which it beats last frame's whole picture taken for this frame's (PSNR, dB). */
+static int worst_max_diff; /* follow_path's largest difference in a channel, /255 */
+
 static double follow_path(const char *grid, const pose *path, int n, int first, double *gain)
 {
+    worst_max_diff = 0;
     tr_ctx c;
     if (tr_open(&c, &cu_display_egl, W, H, 0))
         fail_msg("%s", c.err);
@@ -112,13 +115,15 @@ static double follow_path(const char *grid, const pose *path, int n, int first, 
             if (d.psnr < 30)
                 tr_save_failure("temporal", got, ref + PX * (size_t)k, W, H);
         }
+        if (d.max_diff > worst_max_diff)
+            worst_max_diff = d.max_diff;
         if (d.psnr - st.psnr < least_gain)
             least_gain = d.psnr - st.psnr;
         if (getenv("CUMULO_TEST_DEBUG"))
             printf("  frame %d: %.1f dB, last frame's picture %.1f dB\n", k, d.psnr, st.psnr);
     }
-    printf("%s: worst PSNR against the whole render %.1f dB over frames %d..%d; at least %.1f dB better than last "
-           "frame's picture\n", grid, worst, first, n - 1, least_gain);
+    printf("%s: worst PSNR against the whole render %.1f dB (max difference %d/255) over frames %d..%d; at least "
+           "%.1f dB better than last frame's picture\n", grid, worst, worst_max_diff, first, n - 1, least_gain);
     *gain = least_gain;
     free(ref);
     free(got);
@@ -138,8 +143,10 @@ static void test_still_view_is_the_whole_render(void **st)
     for (int g = 0; g < 3; g++) {
         double gain, psnr = follow_path(grids[g], path, 18, 0, &gain);
         /* every marched pixel is its own ray (the shifted projection), every other one the last frame's copy:
-         * measured 83 dB; the shift half a pixel off gives 60 */
-        assert_true(psnr >= 70.0);
+         * measured 68.6 dB, at most 1/255 (the whole render rounds through its fp16 target, the grid's frame is
+         * composited in one pass); the shift half a pixel off gives 59 dB and 9/255 */
+        assert_true(psnr >= 65.0);
+        assert_true(worst_max_diff <= 1);
     }
 }
 
