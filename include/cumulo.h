@@ -142,7 +142,8 @@ int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
 enum { CU_PASS_MAPS, CU_PASS_SHADOWS, CU_PASS_ENERGY, CU_PASS_SKY, CU_PASS_CLOUDS, CU_PASS_UPSAMPLE, CU_PASS_TONEMAP,
        CU_PASS_COUNT };
 /* A pass's name for reports: "maps" (the clouds' sun, slab and zenith maps), "shadows" (cloud-on-cloud and ground
- * shadow maps), "energy" (the energy closure), "sky", "clouds", "upsample" (quality.cloud_downsample), "tonemap";
+ * shadow maps), "energy" (the energy closure), "sky", "clouds", "upsample" (quality.cloud_downsample's upsampling,
+ * temporal_grid's resolve, and the sky pass that composites them into the output when it does), "tonemap";
  * NULL outside 0..CU_PASS_COUNT-1. */
 const char *cu_pass_name(int pass);
 /* 1: time every pass of each frame by the wall clock between glFinish calls (which serialise CPU and GPU, so a
