@@ -258,6 +258,11 @@ int cmd_bench(int argc, char **argv)
             printf(" %s=%.3f", cu_pass_name(k), median(t_pass + (size_t)k * frames, frames));
         printf("\n");
     }
+    int bd, bg;
+    double bms;
+    if (cu_renderer_budget(s.r, &bd, &bg, &bms) == 0) /* where the frame budget ended */
+        printf("[%s] %s: budget: clouds at 1/%d resolution, temporal grid %d, last median %.3f ms (timer's)\n", base,
+               opts, bd, bg, bms);
     if (camera == CAM_BOTH) {
         printf("[%s] %s:unmoved: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts,
                1000.0 / still_med, still_med, still_p95, frames);

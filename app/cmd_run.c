@@ -349,8 +349,8 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clo
     /* Headless without a frame count has no vsync: wait for input up to a 60 Hz frame instead of spinning. */
     int idle_headless = (!strcmp(s->be->name, "egl") || !strcmp(s->be->name, "osmesa")) && !a->frames_max;
     /* Nothing moved, nothing redrawn: without --clock (clouds drifting) or --frames (a measurement), on DRM/KMS (the
-     * last flip stays on screen) and headless, a frame in which nothing changed is not drawn: the loop waits for input
-     * (100 ms at most). Windows are redrawn every frame (an uncovered window needs its pixels). */
+     * last flip stays on screen) and headless, a frame in which nothing changed is not drawn once the picture has
+     * settled (cu_renderer_settled: a temporal grid needs G^2 frames): the loop waits for input (100 ms at most). Windows are redrawn every frame (an uncovered window needs its pixels). */
     int hold = !clock && !a->frames_max && (idle_headless || !strcmp(s->be->name, "drm"));
     int dirty = 1, last_w = -1, last_h = -1;
     long frames = 0, drawn = 0;
@@ -395,7 +395,7 @@ static int run_loop(run_session *s, run_args *a, cu_sun_ctl *sun, run_clock *clo
         }
         frames++;
         drawn++;
-        dirty = 0;
+        dirty = !cu_renderer_settled(s->r); /* a temporal grid marches the rest of the picture in the next frames */
         last_w = w, last_h = h;
     }
     double secs = (double)(now_ns() - t_start) * 1e-9;

@@ -52,6 +52,14 @@ int cli_common_getopt(cli_opts *o, int id, const char *v, const char *cmd)
         snprintf(o->time_set, sizeof o->time_set, "scene.time=%s", v);
         o->sets[o->nsets++] = o->time_set; /* the scene's own range check judges the value */
         return 1;
+    case CLI_OPT_TARGET_FPS:
+        if (o->nsets == CLI_MAX_SETS || strlen(v) > 40) {
+            fprintf(stderr, "%s: --target-fps expects frames per second, got '%.40s'\n", cmd, v);
+            return -1;
+        }
+        snprintf(o->fps_set, sizeof o->fps_set, "quality.target_fps=%s", v);
+        o->sets[o->nsets++] = o->fps_set;
+        return 1;
     case CLI_OPT_SET:
         if (o->nsets == CLI_MAX_SETS) {
             fprintf(stderr, "%s: at most %d --set options\n", cmd, CLI_MAX_SETS);

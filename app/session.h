@@ -19,6 +19,7 @@ typedef struct cli_opts {
     int nsets;
     const char *data_dir;     /* --data-dir; NULL = cli_data_dir()'s search */
     char time_set[64];        /* --time T as the --set it stands for */
+    char fps_set[64];         /* --target-fps F likewise */
     int verbose;
 } cli_opts;
 
@@ -35,12 +36,12 @@ typedef struct cli_session {
 
 /* getopt_long entries of the common options, for a subcommand's option table; their ids are CLI_OPT_*. */
 enum { CLI_OPT_SIZE = 0x100, CLI_OPT_BACKEND, CLI_OPT_SET, CLI_OPT_DATA_DIR, CLI_OPT_HELP, CLI_OPT_VERSION,
-       CLI_OPT_TIME };
+       CLI_OPT_TIME, CLI_OPT_TARGET_FPS };
 #define CLI_COMMON_LONGOPTS                                                                                      \
     {"size", required_argument, NULL, CLI_OPT_SIZE}, {"backend", required_argument, NULL, CLI_OPT_BACKEND},    \
     {"platform", required_argument, NULL, CLI_OPT_BACKEND}, {"set", required_argument, NULL, CLI_OPT_SET},    \
     {"data-dir", required_argument, NULL, CLI_OPT_DATA_DIR}, {"verbose", no_argument, NULL, 'v'},             \
-    {"time", required_argument, NULL, CLI_OPT_TIME},                                                           \
+    {"time", required_argument, NULL, CLI_OPT_TIME}, {"target-fps", required_argument, NULL, CLI_OPT_TARGET_FPS}, \
     {"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, CLI_OPT_VERSION}
 /* The common options' lines for a subcommand's --help. */
 #define CLI_COMMON_HELP                                                                                          \
@@ -48,6 +49,7 @@ enum { CLI_OPT_SIZE = 0x100, CLI_OPT_BACKEND, CLI_OPT_SET, CLI_OPT_DATA_DIR, CLI
     "  --backend NAME         display back end: egl (= headless), osmesa, ... (cumulo --version lists them)\n"   \
     "  --set SECTION.KEY=V    override one scene value (repeatable; ellipsoid.N.key for the N-th ellipsoid)\n"   \
     "  --time T               the scene time in seconds (= --set scene.time=T): wind, life cycles, time_utc\n"    \
+    "  --target-fps F         a frame budget (= --set quality.target_fps=F): coarser clouds while frames are slow\n" \
     "  --data-dir DIR         the tables (mie_cloud.tbl, ...); default $CUMULO_DATA_DIR, the build tree's\n"      \
     "                         data/ when run from it, else the installed copy\n"                                 \
     "  -v, --verbose          log the renderer's choices (GL strings, fallbacks)\n"                            \

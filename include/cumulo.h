@@ -138,6 +138,13 @@ typedef struct cu_frame {
  * left it when this returns; so do cu_renderer_create, cu_renderer_set_scene and cu_renderer_set_sun. */
 int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
 
+/* 1 when drawing the last frame again (the same camera, size, output, sun and time) would not change the picture;
+ * 0 while the temporal grid (quality.temporal_grid G) has pixels not marched since that last changed (G^2 - 1
+ * frames after a change it did not redraw whole) or a cloud's maps wait for their turn (at most four refreshed a
+ * frame), and before the first frame. A host that draws only when something changed (cumulo run on DRM/KMS and
+ * headless) draws until this says 1. */
+int  cu_renderer_settled(const cu_renderer *r);
+
 /* ---- profiling: where a frame's time goes ---- */
 enum { CU_PASS_MAPS, CU_PASS_SHADOWS, CU_PASS_ENERGY, CU_PASS_SKY, CU_PASS_CLOUDS, CU_PASS_UPSAMPLE, CU_PASS_TONEMAP,
        CU_PASS_COUNT };
@@ -152,6 +159,15 @@ const char *cu_pass_name(int pass);
 void cu_renderer_set_profiling(cu_renderer *r, int on);
 /* The last profiled frame's milliseconds per pass into ms[CU_PASS_COUNT]: 0, or 1 when none was profiled. */
 int  cu_renderer_pass_times(const cu_renderer *r, double ms[CU_PASS_COUNT]);
+
+/* ---- the frame budget: [quality] target_fps, max_downsample, max_temporal_grid ---- */
+/* With a budget the renderer times every frame (GPU timer queries where the context has them, read back a few frames
+ * later without waiting; else the wall clock and a glFinish at the end of cu_render) and draws the clouds at a
+ * coarser resolution and a larger temporal grid while the median of 5 frames exceeds 1/target_fps, finer again when
+ * it is under 3/4 of it; each change is logged. This gives the resolution (1/cloud_downsample) and temporal grid the
+ * next frame is drawn at and the budget's last median frame time in ms (0 before the first): 0, or 1 when the scene
+ * sets no budget (its own cloud_downsample and temporal_grid are given then). */
+int  cu_renderer_budget(const cu_renderer *r, int *cloud_downsample, int *temporal_grid, double *frame_ms);
 
 /* Image files for screenshots: RGBA8 pixels, top row first, as 8-bit PNG; RGB float pixels (linear radiance, top
  * row first) as PFM. Every write is checked, including the final flush and close (a full disk is an error). */

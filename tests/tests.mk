@@ -33,6 +33,8 @@ $(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIB
 $(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
 # quality.noise_baked's CPU twin against the fractal noise it stands in for.
 $(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE),,$(LIB_LIBS)))
+# The frame budget's controller (quality.target_fps) driven by frame costs of the test's own.
+$(eval $(call test_program,test_budget,tests/core/test_budget.c $(CORE),,$(LIB_LIBS)))
 # -Wno-pedantic: _Float16 is an ISO/IEC TS 18661-3 extension type, used only here to emulate mediump.
 $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedantic,))
 
@@ -52,6 +54,10 @@ $(foreach t,embed embed_state shadows downsample,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c tests/gpu/host_util.c $(HEADLESS) $(LIB),,\
     $(HEADLESS_LIBS) $(GLES_LIBS))))
 CHECK_TESTS += tests/gpu/test_host_scene.sh
+# The frame budget (quality.target_fps): the ladder walked with timer queries and the wall clock, a generous budget
+# changing nothing, a host's own timer query (it draws GLES itself, like the embedding tests).
+$(eval $(call test_program,test_frame_budget,tests/gpu/test_frame_budget.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) \
+  $(GLES_LIBS)))
 # A sky of many clouds: compositing, clear sky, wind, wrap-around, no pops over 10 minutes, a day without NaN (it
 # draws into float framebuffers of its own, so it links GLES like the embedding tests).
 $(eval $(call test_program,test_sky_field,tests/gpu/test_sky_field.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))

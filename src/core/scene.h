@@ -101,6 +101,9 @@ struct cu_scene {
     int cloud_downsample;     /* 1..4: the cloud pass at 1/N resolution, upsampled (pass_upsample.c) */
     int temporal_grid;        /* 1..4: each frame marches 1 of G x G cloud pixels, the rest reprojected
                                * (pass_temporal.c); 1: every pixel every frame */
+    double target_fps;        /* the frame budget (0: off): the renderer measures its frames and moves cloud_downsample
+                               * and temporal_grid between theirs and the two below (src/core/budget.c) */
+    int max_downsample, max_temporal_grid;
     int hull_tessellation;    /* latitude bands of the hull mesh (longitude = 2x) */
     int max_intervals;        /* merged in-cloud intervals per pixel */
     int noise;                /* 0/1 */

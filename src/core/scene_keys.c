@@ -151,6 +151,14 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "temporal_grid", 1, "1", 1, 4, 0, "", "each frame marches one cloud pixel of every G x G block "
         "(a Bayer order) and reprojects the others from the frame before (camera motion and wind); each pixel is "
         "marched again within G^2 frames; 1: every pixel every frame", S(temporal_grid)),
+    /* 1000 fps: 1 ms a frame, beyond what any display shows; 0: off */
+    NUM("quality", "target_fps", 1, "0", 0, 1000, 0, "frames/s", "a frame budget: the renderer times its frames "
+        "(GPU timer queries, else the wall clock) and draws the clouds at a coarser cloud_downsample and "
+        "temporal_grid, up to the two maxima below, while frames take longer than 1/target_fps; 0: off", S(target_fps)),
+    INT("quality", "max_downsample", 1, "2", 1, 4, 0, "", "target_fps: the coarsest cloud_downsample it may use "
+        "(at least cloud_downsample)", S(max_downsample)),
+    INT("quality", "max_temporal_grid", 1, "4", 1, 4, 0, "", "target_fps: the largest temporal_grid it may use (at "
+        "least temporal_grid)", S(max_temporal_grid)),
     BOOL("quality", "cloud_shadows", "on", "clouds shade each other and the ground (needs half-float targets)",
          S(cloud_shadows)),
     ENUM("quality", "integration", integration_names, "exponential",

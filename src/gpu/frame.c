@@ -1,6 +1,7 @@
 /* src/gpu/frame.c: one frame: the clouds in view (culled, sorted back to front), their maps at the level of detail
  * their size on screen asks for, the energy closure, then the sky, each cloud and the tone map, in order. */
 #include "frame.h"
+#include "frame_budget.h"
 #include "profile.h"
 #include "camera.h"
 #include "error.h"
@@ -86,8 +87,12 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *
     int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
     int urgent = !sl->maps_valid || !sl->zenith_valid || c < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
     if (!urgent) {
-        if ((!boiled && !crept) || *budget <= 0)
+        if (!boiled && !crept)
             return 0;
+        if (*budget <= 0) {
+            r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
+            return 0;
+        }
         (*budget)--;
     }
     if (boiled)
@@ -211,13 +216,13 @@ static void temporal_frame_identity(cu_gpu_scene *ctx)
 /* quality.temporal_grid for this frame: G, or 1 where the grid cannot serve (said once a scene). */
 static int temporal_grid(cu_renderer *r, const cu_frame *f, int visible)
 {
-    if (r->scene.temporal_grid < 2 || !r->pass_temporal.prog || visible == 0)
+    if (r->frame_g < 2 || !r->pass_temporal.prog || visible == 0)
         return 1;
     const char *why = f->depth_texture ? "the host gives its depth, which the reprojection would not follow"
                       : r->pass_tonemap.hdr.format == GL_RGBA8 ? "no float render target to hold distances"
                                                                : NULL;
     if (!why)
-        return r->scene.temporal_grid;
+        return r->frame_g;
     if (!r->temporal_off_said)
         cu_gpu_log(&r->ctx, CU_LOG_INFO, "quality.temporal_grid: every cloud pixel every frame: %s", why);
     r->temporal_off_said = 1;
@@ -231,7 +236,7 @@ static int temporal_begin(cu_renderer *r, const cu_frame *f, int visible, int n,
 {
     cu_gpu_scene *ctx = &r->ctx;
     cu_pass_temporal *t = &r->pass_temporal;
-    int lw = (f->width + n - 1) / n, lh = (f->height + n - 1) / n, whole = 0, g = r->scene.temporal_grid;
+    int lw = (f->width + n - 1) / n, lh = (f->height + n - 1) / n, whole = 0, g = r->frame_g;
     cu_camera keep = ctx->camera;
     const cu_cloud *keep_cloud = ctx->cloud;
     for (int j = 0; j < visible; j++) {
@@ -274,6 +279,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     ctx->host_depth.tex = f->depth_texture;
     ctx->host_depth.clear = f->depth_reversed ? 0.0f : 1.0f;
     temporal_frame_identity(ctx);
+    r->maps_deferred = 0;
+    r->sparse_grid = 1;
     cu_profile_begin(r);
     int visible = visible_clouds(r, view, proj, err);
     if (visible < 0)
@@ -315,7 +322,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them; the
      * temporal grid's image likewise. With neither the host's depth nor linear or clouds-only output, the sky pass
      * brings them up itself, tone-mapped into the output: one full-screen pass instead of three. */
-    int n = r->scene.cloud_downsample > 1 && r->pass_upsample.prog && visible > 0 ? r->scene.cloud_downsample : 1;
+    int n = r->frame_d > 1 && r->pass_upsample.prog && visible > 0 ? r->frame_d : 1;
     int g = temporal_grid(r, f, visible), sparse = 0;
     int over = (n > 1 || g > 1) && !f->linear && !f->clouds_only && !ctx->host_depth.tex;
     gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
@@ -337,6 +344,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (g > 1) {
         if (temporal_begin(r, f, visible, n, view, proj, &sparse, err))
             return 1;
+        r->sparse_grid = sparse ? g : 1;
     } else if (n > 1) {
         if (cu_pass_upsample_begin(&r->pass_upsample, ctx, f->width, f->height, n, r->pass_tonemap.hdr.format, err))
             return 1;
@@ -399,6 +407,41 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     return 0;
 }
 
+/* After a frame: the frames the temporal grid still needs before every pixel was marched since what the picture
+ * depends on last changed (camera, size, output, sun, time, resolution, grid). */
+static void note_settling(cu_renderer *r, const cu_frame *f)
+{
+    struct cu_frame_key k;
+    memset(&k, 0, sizeof k); /* the padding too: keys are compared as bytes */
+    mat4 view, proj;
+    cu_error e;
+    if (frame_matrices(r, f, &view, &proj, &e))
+        return;
+    memcpy(k.view, view.m, sizeof k.view);
+    memcpy(k.proj, proj.m, sizeof k.proj);
+    k.time = r->time;
+    k.sun = r->sky.sun_dir;
+    k.width = f->width;
+    k.height = f->height;
+    k.linear = f->linear;
+    k.clouds_only = f->clouds_only;
+    k.depth_texture = f->depth_texture;
+    k.downsample = r->frame_d;
+    k.grid = r->frame_g;
+    int g = r->sparse_grid;
+    if (!r->drawn || memcmp(&k, &r->last_key, sizeof k))
+        r->settle_left = g > 1 ? g * g - 1 : 0;
+    else if (r->settle_left > 0)
+        r->settle_left--;
+    r->last_key = k;
+    r->drawn = 1;
+}
+
+int cu_renderer_settled(const cu_renderer *r)
+{
+    return r->has_scene && r->drawn && r->settle_left == 0 && !r->maps_deferred;
+}
+
 int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
 {
     if (!r->has_scene)
@@ -410,7 +453,12 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     cu_glstate st;
     cu_glstate_enter(gl, &st);
+    cu_frame_budget_before(r);
+    cu_frame_budget_begin(r);
     int rc = render_frame(r, f, err);
+    cu_frame_budget_end(r);
+    if (rc == 0)
+        note_settling(r, f);
     cu_glstate_leave(gl, &st);
     return rc;
 }

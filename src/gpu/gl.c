@@ -33,6 +33,22 @@ int cu_gl_load(cu_gl *gl, cu_get_proc_fn get, void *user, cu_error *err)
     return 0;
 }
 
+void *cu_gl_optional(cu_get_proc_fn get, void *user, const char *name)
+{
+    if (get)
+        return get(user, name);
+    void *p = dlsym_loader(NULL, name);
+    if (p)
+        return p;
+    /* glvnd's libGLESv2 exports the core functions only: an extension's come from EGL, when the process has it */
+    void *(*egl_get)(const char *);
+    void *e = dlsym_loader(NULL, "eglGetProcAddress");
+    if (!e)
+        return NULL;
+    memcpy(&egl_get, &e, sizeof e);
+    return egl_get(name);
+}
+
 int cu_gl_has_extension(const cu_gl *gl, const char *name)
 {
     GLint n = 0;

@@ -24,7 +24,7 @@
     X(GenBuffers, GENBUFFERS) X(GenerateMipmap, GENERATEMIPMAP) X(GenFramebuffers, GENFRAMEBUFFERS) X(GenQueries, GENQUERIES) \
     X(GenRenderbuffers, GENRENDERBUFFERS) X(GenSamplers, GENSAMPLERS) X(GenTextures, GENTEXTURES) X(GenVertexArrays, GENVERTEXARRAYS) \
     X(GetBooleanv, GETBOOLEANV) X(GetError, GETERROR) X(GetFloatv, GETFLOATV) X(GetIntegerv, GETINTEGERV) X(GetProgramInfoLog, GETPROGRAMINFOLOG) \
-    X(GetProgramiv, GETPROGRAMIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \
+    X(GetProgramiv, GETPROGRAMIV) X(GetQueryiv, GETQUERYIV) X(GetQueryObjectuiv, GETQUERYOBJECTUIV) X(GetShaderInfoLog, GETSHADERINFOLOG) \
     X(GetShaderiv, GETSHADERIV) X(GetString, GETSTRING) X(GetStringi, GETSTRINGI) \
     X(GetUniformLocation, GETUNIFORMLOCATION) X(IsEnabled, ISENABLED) X(LinkProgram, LINKPROGRAM) X(PixelStorei, PIXELSTOREI) \
     X(ReadPixels, READPIXELS) X(RenderbufferStorage, RENDERBUFFERSTORAGE) X(SamplerParameteri, SAMPLERPARAMETERI) X(Scissor, SCISSOR) \
@@ -45,6 +45,8 @@ typedef struct cu_gl {
 /* Loads every entry point; on failure names the first missing one. */
 int cu_gl_load(cu_gl *gl, cu_get_proc_fn get, void *user, cu_error *err);
 int cu_gl_has_extension(const cu_gl *gl, const char *name);
+/* An entry point beyond GLES 3.0 (an extension's): NULL when the context lacks it. get NULL: the process's own. */
+void *cu_gl_optional(cu_get_proc_fn get, void *user, const char *name);
 
 typedef struct cu_shader_src {
     const char *name;   /* file name under shaders_gles/, for messages */

@@ -3,6 +3,7 @@
 #include "renderer.h"
 #include "camera.h"
 #include "error.h"
+#include "frame_budget.h"
 #include "glstate.h"
 #include "scene_camera.h"
 #include "scene_sun.h"
@@ -131,6 +132,8 @@ void cu_renderer_destroy(cu_renderer *r)
     if (!r)
         return;
     delete_scene_objects(r);
+    if (r->timer_ready)
+        cu_frame_timer_free(&r->timer, &r->gl);
     if (r->noise_ready)
         cu_noise_destroy(&r->noise);
     cu_pass_slab_free(&r->pass_slab);
@@ -151,6 +154,8 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
 {
     const cu_scene *s = &r->scene;
     const cu_gpu_scene *c = &r->ctx;
+    int most_d, most_g; /* the frame budget may draw any resolution and grid up to these */
+    cu_frame_budget_most(r, &most_d, &most_g);
     char defs[1700];
     int n = snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
@@ -167,7 +172,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
              r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
              s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps, s->noise && s->noise_baked,
-             s->noise && s->boundary_step > 0, s->temporal_grid > 1);
+             s->noise && s->boundary_step > 0, most_g > 1);
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");
@@ -181,6 +186,8 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
 {
     cu_gpu_scene *ctx = &r->ctx;
     shader_defs d;
+    int most_d, most_g;
+    cu_frame_budget_most(r, &most_d, &most_g);
     if (build_defines(r, &d, 0, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
         return 1;
     if (cu_pass_sun_create(&r->pass_sun, ctx, d.hull, d.fs, err) ||
@@ -189,9 +196,8 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
         cu_pass_sky_create(&r->pass_sky, ctx, d.fs, err) ||
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err) ||
         (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)) ||
-        ((r->scene.cloud_downsample > 1 || r->scene.temporal_grid > 1) &&
-         cu_pass_upsample_create(&r->pass_upsample, ctx, err)) ||
-        (r->scene.temporal_grid > 1 && cu_pass_temporal_create(&r->pass_temporal, ctx, err)))
+        ((most_d > 1 || most_g > 1) && cu_pass_upsample_create(&r->pass_upsample, ctx, err)) ||
+        (most_g > 1 && cu_pass_temporal_create(&r->pass_temporal, ctx, err)))
         return 1;
     if (r->clouds.n > 1 && r->scene.lod_pixels > 0) {
         shader_defs far;
@@ -211,6 +217,8 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     delete_scene_objects(r);
     r->scene = *s;
     r->has_scene = 0;
+    r->drawn = 0; /* a new scene's first frame is a change */
+    cu_frame_budget_scene(r);
     if (!r->noise_ready) {
         if (cu_noise_create(&r->noise, NOISE_SEED))
             return cu_fail(err, "noise: out of memory");

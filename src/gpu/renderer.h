@@ -2,7 +2,9 @@
  * what is dirty. Only renderer.c (and tests that look inside) include it; no pass does. */
 #ifndef CU_RENDERER_H
 #define CU_RENDERER_H
+#include "budget.h"
 #include "cloud_set.h"
+#include "frame_timer.h"
 #include "gpu_scene.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
@@ -52,6 +54,22 @@ struct cu_renderer {
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
     uint64_t ground_sig;
     vec3 ground_sun;      /* the sun the ground map was made for */
+
+    cu_budget budget;     /* quality.target_fps: the controller (n = 0: no budget) */
+    cu_frame_timer timer; /* ... how it measures a frame, made with the first budget (timer_ready) */
+    int timer_ready;
+    int timer_no_queries; /* tests: the wall clock even where timer queries exist */
+    int frame_d, frame_g; /* this frame's cloud_downsample and temporal_grid: the scene's or the budget's */
+
+    /* Whether the picture has settled (cu_renderer_settled): what the last frame was drawn from, the frames still to
+     * draw before the temporal grid has marched every pixel since it last changed, a map refresh left for later. */
+    struct cu_frame_key {
+        double view[16], proj[16], time;
+        vec3 sun;
+        int width, height, linear, clouds_only, downsample, grid;
+        unsigned depth_texture;
+    } last_key;
+    int settle_left, maps_deferred, sparse_grid, drawn;
 
     int sun_dirty;        /* the sun moved or the scene changed: the energy closure is measured again */
 };

@@ -44,6 +44,14 @@ if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=2$' "$OUT/i.out" && [ -n "$f1" ] 
   t_ok idle_kiosk_draws_only_changes
 else t_fail idle_kiosk_draws_only_changes "exit $rc, status frames $f1 then $f2: $(tail -1 "$OUT/i.out")"; fi
 
+# ... and a temporal grid draws until the picture has settled: a sun move of 0.1 deg from the scene's 30, 135 (less
+# than the 0.25 deg that redraws the grid whole) marches a quarter of the cloud pixels of a 2 x 2 grid, so the move takes 4 frames, not 1.
+{ sleep 1; printf 'sun 30.1 135\n'; sleep 0.5; printf 'quit\n'; } |
+  $C run $S --platform headless --size 64x48 --set quality.temporal_grid=2 >"$OUT/g.out" 2>"$OUT/g.err"
+rc=$?
+if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=5$' "$OUT/g.out"; then t_ok idle_kiosk_grid_draws_until_settled
+else t_fail idle_kiosk_grid_draws_until_settled "exit $rc: $(tail -1 "$OUT/g.out") $(tail -2 "$OUT/g.err")"; fi
+
 # Limits from the command line.
 printf 'sun 80 300\n' | $C run $S --platform headless --frames 3 --size 64x48 --sun-elevation-range 5:60 \
   --sun-azimuth-range 90:270 >/dev/null 2>"$OUT/l.err"
