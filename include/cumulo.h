@@ -140,8 +140,8 @@ int  cu_render(cu_renderer *r, const cu_frame *f, cu_error *err);
 
 /* 1 when drawing the last frame again (the same camera, size, output, sun and time) would not change the picture;
  * 0 while the temporal grid (quality.temporal_grid G) has pixels not marched since that last changed (G^2 - 1
- * frames after a change it did not redraw whole) or a cloud's maps wait for their turn (at most four refreshed a
- * frame), and before the first frame. A host that draws only when something changed (cumulo run on DRM/KMS and
+ * frames after a change it did not redraw whole) or a cloud's maps or impostor wait for their turn (at most four of
+ * each remade a frame), and before the first frame. A host that draws only when something changed (cumulo run on DRM/KMS and
  * headless) draws until this says 1. */
 int  cu_renderer_settled(const cu_renderer *r);
 

@@ -143,6 +143,14 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
         "in a field of clouds, one narrower than this on screen is marched with one segment fewer and two noise "
         "octaves (0: never)", S(lod_pixels)),
+    /* up to 4096 pixels: an impostor's image is at most 256 texels a side, so a larger cloud would blur */
+    INT("quality", "impostor_pixels", 1, "0", 0, 4096, 0, "pixels",
+        "a cloud narrower than this on screen is drawn from an image of itself made from the eye (an impostor), "
+        "remade when the direction to it turns by more than impostor_degrees, when its sun maps, shadows, life or "
+        "boil move on, at most four a frame besides new ones (0: never)", S(impostor_pixels)),
+    /* 0.01 .. 45 degrees: below, a cloud drifting in the wind would be remade every frame anyway */
+    NUM("quality", "impostor_degrees", 1, "1", 0.01, 45, 0, "degrees",
+        "how far the direction from the eye to a cloud may turn before its impostor is remade", S(impostor_degrees)),
     /* 1..4: beyond a quarter a cloud's edge spans 4 output pixels per texel and the upsampling shows */
     INT("quality", "cloud_downsample", 1, "1", 1, 4, 0, "", "draw the clouds at 1/N of the resolution in each "
         "direction and upsample them (depth-aware against the host's depth): about N^2 fewer cloud pixels",

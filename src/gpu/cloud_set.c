@@ -91,6 +91,7 @@ void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl)
         if (sl->inst_vbo)
             gl->DeleteBuffers(1, &sl->inst_vbo);
         cu_cloud_slot_free_maps(sl, gl);
+        cu_impostor_free(&sl->imp, gl);
     }
     free(cs->slot);
     memset(cs, 0, sizeof *cs);

@@ -298,6 +298,9 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (r->sun_dirty)
         energy_closure(r, visible);
     cu_profile_mark(r, CU_PASS_ENERGY);
+    if (cu_frame_impostors(r, f, visible, err))
+        return 1;
+    cu_profile_mark(r, CU_PASS_MAPS); /* impostor images count with the maps: made now, drawn from later */
     /* The sky's camera: the view's directions alone (the world origin as the cloud frame). The sun as it is now: with
      * no cloud in view nothing above has set it since cu_renderer_set_sun moved it. */
     ctx->cloud = &r->none;
@@ -351,6 +354,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     ctx->host_scale = n;
     double dt = g > 1 ? r->time - r->pass_temporal.prev_time : 0.0;
+    int depth_used = 0;
     for (int j = 0; j < visible; j++) {
         cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
         cu_frame_bind_cloud(r, sl);
@@ -358,8 +362,13 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         ctx->camera = r->cams[r->order[j]];
         ctx->motion[0] = (float)(sl->wind.x * dt);
         ctx->motion[1] = (float)(sl->wind.z * dt);
-        if (j > 0) /* each cloud's depth pre-pass and stencil of its own */
+        if (sl->imp.in_use) { /* small on screen: its image (quality.impostor_pixels) */
+            cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
+            continue;
+        }
+        if (depth_used) /* each cloud's depth pre-pass and stencil of its own */
             gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        depth_used = 1;
         int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
         cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
     }

@@ -49,6 +49,8 @@ struct cu_renderer {
     cu_pass_upsample pass_upsample; /* quality.cloud_downsample > 1 or temporal_grid > 1: the cloud image brought up */
     cu_pass_temporal pass_temporal; /* quality.temporal_grid > 1 (prog 0 otherwise) */
     int temporal_off_said;          /* the log line saying why the grid is not used this scene */
+    cu_pass_impostor pass_impostor; /* quality.impostor_pixels > 0 (prog 0 otherwise) */
+    long impostors_made;  /* impostor images made since the scene was set (tests read it) */
     cu_pass_shadow pass_shadow;
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
