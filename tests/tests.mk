@@ -41,11 +41,13 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 # gpu: renders through both headless back ends against references, closed forms and the CPU (test_sky: the sky pass
 # against the CPU's Preetham model; test_temporal: the temporal grid against whole frames; test_composite: the
 # one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render).
-$(foreach t,render extremes sunmap ms fallback field sky temporal composite impostor,\
+$(foreach t,render sunmap ms fallback field sky temporal composite impostor,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
 $(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
+# Issue 7's extremes matrix (it reads the temporal history and impostor images back with GLES itself).
+$(eval $(call test_program,test_extremes,tests/gpu/test_extremes.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))
 # The extremes matrix of every key's range, through the GPU renderer and the path tracer.
 $(eval $(call test_program,test_ranges,tests/gpu/test_ranges.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # embed: the test is the host, drawing with GLES itself (glvnd's libGLESv2 dispatches to the EGL context); the

@@ -1,7 +1,6 @@
 /* src/gpu/frame.c: one frame: the clouds in view (culled, sorted back to front), their maps at the level of detail
  * their size on screen asks for, the energy closure, then the sky, each cloud and the tone map, in order. */
 #include "frame.h"
-#include "frame_budget.h"
 #include "profile.h"
 #include "camera.h"
 #include "error.h"
@@ -216,13 +215,13 @@ static void temporal_frame_identity(cu_gpu_scene *ctx)
 /* quality.temporal_grid for this frame: G, or 1 where the grid cannot serve (said once a scene). */
 static int temporal_grid(cu_renderer *r, const cu_frame *f, int visible)
 {
-    if (r->frame_g < 2 || !r->pass_temporal.prog || visible == 0)
+    if (r->fb.g < 2 || !r->pass_temporal.prog || visible == 0)
         return 1;
     const char *why = f->depth_texture ? "the host gives its depth, which the reprojection would not follow"
                       : r->pass_tonemap.hdr.format == GL_RGBA8 ? "no float render target to hold distances"
                                                                : NULL;
     if (!why)
-        return r->frame_g;
+        return r->fb.g;
     if (!r->temporal_off_said)
         cu_gpu_log(&r->ctx, CU_LOG_INFO, "quality.temporal_grid: every cloud pixel every frame: %s", why);
     r->temporal_off_said = 1;
@@ -236,7 +235,7 @@ static int temporal_begin(cu_renderer *r, const cu_frame *f, int visible, int n,
 {
     cu_gpu_scene *ctx = &r->ctx;
     cu_pass_temporal *t = &r->pass_temporal;
-    int lw = (f->width + n - 1) / n, lh = (f->height + n - 1) / n, whole = 0, g = r->frame_g;
+    int lw = (f->width + n - 1) / n, lh = (f->height + n - 1) / n, whole = 0, g = r->fb.g;
     cu_camera keep = ctx->camera;
     const cu_cloud *keep_cloud = ctx->cloud;
     for (int j = 0; j < visible; j++) {
@@ -325,7 +324,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     /* quality.cloud_downsample: the clouds into a target of 1/N the size, brought up over the sky after them; the
      * temporal grid's image likewise. With neither the host's depth nor linear or clouds-only output, the sky pass
      * brings them up itself, tone-mapped into the output: one full-screen pass instead of three. */
-    int n = r->frame_d > 1 && r->pass_upsample.prog && visible > 0 ? r->frame_d : 1;
+    int n = r->fb.d > 1 && r->pass_upsample.prog && visible > 0 ? r->fb.d : 1;
     int g = temporal_grid(r, f, visible), sparse = 0;
     int over = (n > 1 || g > 1) && !f->linear && !f->clouds_only && !ctx->host_depth.tex;
     gl->Disable(GL_CULL_FACE); /* back faces matter when the camera is inside an ellipsoid */
@@ -435,8 +434,8 @@ static void note_settling(cu_renderer *r, const cu_frame *f)
     k.linear = f->linear;
     k.clouds_only = f->clouds_only;
     k.depth_texture = f->depth_texture;
-    k.downsample = r->frame_d;
-    k.grid = r->frame_g;
+    k.downsample = r->fb.d;
+    k.grid = r->fb.g;
     int g = r->sparse_grid;
     if (!r->drawn || memcmp(&k, &r->last_key, sizeof k))
         r->settle_left = g > 1 ? g * g - 1 : 0;
@@ -462,10 +461,10 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     cu_glstate st;
     cu_glstate_enter(gl, &st);
-    cu_frame_budget_before(r);
-    cu_frame_budget_begin(r);
+    cu_frame_budget_before(&r->fb, &r->ctx);
+    cu_frame_budget_begin(&r->fb, gl);
     int rc = render_frame(r, f, err);
-    cu_frame_budget_end(r);
+    cu_frame_budget_end(&r->fb, gl);
     if (rc == 0)
         note_settling(r, f);
     cu_glstate_leave(gl, &st);

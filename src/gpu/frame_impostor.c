@@ -30,7 +30,7 @@ static int eligible(const cu_renderer *r, const cu_frame *f, const cu_cloud_slot
  * (48 dB on field_noon where one texel a pixel gave 43). */
 static int size_for(const cu_renderer *r, const cu_cloud_slot *sl)
 {
-    double want = 2.0 * sl->pixels * cu_hull_scale(r->scene.hull_tessellation) / (r->frame_d > 1 ? r->frame_d : 1);
+    double want = 2.0 * sl->pixels * cu_hull_scale(r->scene.hull_tessellation) / (r->fb.d > 1 ? r->fb.d : 1);
     int s = IMAGE_MIN;
     while (s < IMAGE_MAX && s < want)
         s *= 2;

@@ -3,7 +3,6 @@
 #include "renderer.h"
 #include "camera.h"
 #include "error.h"
-#include "frame_budget.h"
 #include "glstate.h"
 #include "scene_camera.h"
 #include "scene_sun.h"
@@ -134,8 +133,7 @@ void cu_renderer_destroy(cu_renderer *r)
     if (!r)
         return;
     delete_scene_objects(r);
-    if (r->timer_ready)
-        cu_frame_timer_free(&r->timer, &r->gl);
+    cu_frame_budget_free(&r->fb, &r->gl);
     if (r->noise_ready)
         cu_noise_destroy(&r->noise);
     cu_pass_slab_free(&r->pass_slab);
@@ -157,7 +155,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
     const cu_scene *s = &r->scene;
     const cu_gpu_scene *c = &r->ctx;
     int most_d, most_g; /* the frame budget may draw any resolution and grid up to these */
-    cu_frame_budget_most(r, &most_d, &most_g);
+    cu_frame_budget_most(&r->fb, &r->scene, &most_d, &most_g);
     char defs[1700];
     int n = snprintf(defs, sizeof defs,
              "#define NUM_ELL %d\n#define SEGMENTS %d\n#define MAX_INTERVALS %d\n#define NOISE %d\n"
@@ -189,7 +187,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
     cu_gpu_scene *ctx = &r->ctx;
     shader_defs d;
     int most_d, most_g;
-    cu_frame_budget_most(r, &most_d, &most_g);
+    cu_frame_budget_most(&r->fb, &r->scene, &most_d, &most_g);
     if (build_defines(r, &d, 0, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
         return 1;
     if (cu_pass_sun_create(&r->pass_sun, ctx, d.hull, d.fs, err) ||
@@ -221,7 +219,7 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     r->scene = *s;
     r->has_scene = 0;
     r->drawn = 0; /* a new scene's first frame is a change */
-    cu_frame_budget_scene(r);
+    cu_frame_budget_scene(&r->fb, &r->scene, &r->ctx, r->desc.get_proc_address, r->desc.get_proc_user, r->is_gles);
     if (!r->noise_ready) {
         if (cu_noise_create(&r->noise, NOISE_SEED))
             return cu_fail(err, "noise: out of memory");
@@ -382,3 +380,12 @@ int cu_renderer_set_wrap_center(cu_renderer *r, double x, double z, cu_error *er
     return 0;
 }
 
+
+int cu_renderer_budget(const cu_renderer *r, int *cloud_downsample, int *temporal_grid, double *frame_ms)
+{
+    int on = cu_frame_budget_on(&r->fb);
+    *cloud_downsample = r->fb.d > 0 ? r->fb.d : 1;
+    *temporal_grid = r->fb.g > 0 ? r->fb.g : 1;
+    *frame_ms = on ? r->fb.budget.median_ms : 0;
+    return on ? 0 : 1;
+}

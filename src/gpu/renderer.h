@@ -2,9 +2,8 @@
  * what is dirty. Only renderer.c (and tests that look inside) include it; no pass does. */
 #ifndef CU_RENDERER_H
 #define CU_RENDERER_H
-#include "budget.h"
 #include "cloud_set.h"
-#include "frame_timer.h"
+#include "frame_budget.h"
 #include "gpu_scene.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
@@ -57,11 +56,7 @@ struct cu_renderer {
     uint64_t ground_sig;
     vec3 ground_sun;      /* the sun the ground map was made for */
 
-    cu_budget budget;     /* quality.target_fps: the controller (n = 0: no budget) */
-    cu_frame_timer timer; /* ... how it measures a frame, made with the first budget (timer_ready) */
-    int timer_ready;
-    int timer_no_queries; /* tests: the wall clock even where timer queries exist */
-    int frame_d, frame_g; /* this frame's cloud_downsample and temporal_grid: the scene's or the budget's */
+    cu_frame_budget fb;   /* quality.target_fps, and this frame's resolution and grid (fb.d, fb.g) */
 
     /* Whether the picture has settled (cu_renderer_settled): what the last frame was drawn from, the frames still to
      * draw before the temporal grid has marched every pixel since it last changed, a map refresh left for later. */

@@ -2,8 +2,9 @@
  * horizon and at the zenith, sun exactly in front of and behind the camera, camera inside / on / at the centre of an
  * ellipsoid, tangent rays, clouds 10 m and 100 km away, radii from 1 m to 50 km, density from 0 to 1e6 cm^-3, h = 0
  * and h larger than the radii, 64 ellipsoids through one point. Every render: finite, non-negative, bounded; and
- * small steps of an input give small changes of the image. CUMULO_STRESS=1 (make stress) renders larger images
- * and takes finer, longer sweeps. */
+ * small steps of an input give small changes of the image; and over the matrix, four moving frames with the temporal
+ * grid, half resolution and impostors leave every history and impostor image finite. CUMULO_STRESS=1 (make stress)
+ * renders larger images and takes finer, longer sweeps. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,8 +13,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <GLES3/gl3.h>
 #include "scene.h"
 #include "render_util.h"
+#include "renderer.h"
 
 static int W = 64, H = 48;
 static tr_ctx ctx;
@@ -130,6 +133,96 @@ static void test_matrix(void **st)
     }
 }
 
+/* A float target's colour attachment `a` (w x h RGBA), read back and checked finite (colour: non-negative). */
+static void check_target(GLuint fbo, int a, int w, int h, const char *what, const char *label)
+{
+    float *px = malloc(sizeof(float) * 4 * (size_t)w * h);
+    assert_non_null(px);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + (GLenum)a);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, px);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+    for (long i = 0; i < 4L * w * h; i++)
+        if (!isfinite(px[i]) || (a == 0 && px[i] < 0.0f))
+            fail_msg("%s: %s, texel %ld channel %ld = %g", label, what, i / 4, i % 4, px[i]);
+    free(px);
+}
+
+/* Issue 17: no NaN in any history buffer over the matrix. Every case again with the temporal grid (2 x 2), the clouds
+ * at half resolution and every cloud that may be drawn from an impostor drawn from one, over four frames of a camera
+ * turning a degree and moving 20 m a frame (the frames after the first reproject history): the output as above, and
+ * both temporal history images (colour; distance and motion) and every impostor image read back finite. */
+static void test_matrix_history(void **st)
+{
+    (void)st;
+    long histories = 0, images = 0;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        cu_scene *s;
+        cu_error e;
+        if (cu_scene_parse(&s, "extremes", BASE, strlen(BASE), &e))
+            fail_msg("%s", e.msg);
+        const char *extra[] = {"quality.temporal_grid=2", "quality.cloud_downsample=2", "quality.impostor_pixels=4096"};
+        for (int k = 0; k < 3; k++)
+            if (cu_scene_set(s, extra[k], &e))
+                fail_msg("%s", e.msg);
+        for (int k = 0; k < 8 && cases[i].sets[k]; k++)
+            if (cu_scene_set(s, cases[i].sets[k], &e))
+                fail_msg("%s: %s", cases[i].label, e.msg);
+        if (cu_renderer_set_scene(ctx.r, s, &e))
+            fail_msg("%s: %s", cases[i].label, e.msg);
+        for (int f = 0; f < 4; f++) {
+            cu_scene *m;
+            if (cu_scene_parse(&m, "extremes", BASE, strlen(BASE), &e))
+                fail_msg("%s", e.msg);
+            memcpy(m->cam_pos, s->cam_pos, sizeof m->cam_pos);
+            memcpy(m->cam_look, s->cam_look, sizeof m->cam_look);
+            m->cam_fov = s->cam_fov;
+            double a = f * CU_PI / 180.0, dx = m->cam_look[0] - m->cam_pos[0], dz = m->cam_look[2] - m->cam_pos[2];
+            m->cam_look[0] = m->cam_pos[0] + dx * cos(a) - dz * sin(a) + 20.0 * f;
+            m->cam_look[2] = m->cam_pos[2] + dx * sin(a) + dz * cos(a);
+            m->cam_pos[0] += 20.0 * f;
+            float view[16], proj[16];
+            if (cu_scene_camera_matrices(m, (double)W / H, 1.0, 1.0e5, view, proj, &e))
+                fail_msg("%s: %s", cases[i].label, e.msg);
+            unsigned fbo;
+            int w, h;
+            ctx.be->frame(ctx.disp, &fbo, &w, &h);
+            cu_frame fr = {.fbo = fbo, .width = w, .height = h, .linear = 1, .view = view, .projection = proj};
+            if (cu_render(ctx.r, &fr, &e))
+                fail_msg("%s, frame %d: %s", cases[i].label, f, e.msg);
+            float *px = malloc(sizeof(float) * 3 * (size_t)W * H);
+            tr_read_rgbf(&ctx, px);
+            for (long q = 0; q < (long)W * H * 3; q++)
+                if (!isfinite(px[q]) || px[q] < 0.0f || px[q] > MAX_RADIANCE)
+                    fail_msg("%s, frame %d: pixel %ld channel %ld = %g", cases[i].label, f, q / 3, q % 3, px[q]);
+            free(px);
+            cu_scene_free(m);
+        }
+        const cu_pass_temporal *t = &ctx.r->pass_temporal;
+        for (int k = 0; k < 2; k++)
+            if (t->hist[k].fbo) {
+                check_target(t->hist[k].fbo, 0, t->hist[k].width, t->hist[k].height, "history colour", cases[i].label);
+                check_target(t->hist[k].fbo, 1, t->hist[k].width, t->hist[k].height, "history distance and motion",
+                             cases[i].label);
+                histories++;
+            }
+        for (int c = 0; c < ctx.r->clouds.n; c++) {
+            const cu_impostor *im = &ctx.r->clouds.slot[c].imp;
+            if (im->valid) {
+                check_target(im->image.fbo, 0, im->size, im->size, "impostor image", cases[i].label);
+                images++;
+            }
+        }
+        cu_scene_free(s);
+    }
+    printf("%ld history images and %ld impostor images over %zu cases: finite\n", histories, images,
+           sizeof cases / sizeof cases[0]);
+    assert_true(histories >= 2 * (long)(sizeof cases / sizeof cases[0]) - 8); /* density 0 and the like draw none */
+    assert_true(images > 0);
+}
+
 static void test_64_ellipsoids_through_one_point(void **st)
 {
     (void)st;
@@ -209,6 +302,7 @@ int main(void)
         cmocka_unit_test(test_matrix),
         cmocka_unit_test(test_64_ellipsoids_through_one_point),
         cmocka_unit_test(test_continuity),
+        cmocka_unit_test(test_matrix_history),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -39,7 +39,7 @@ static void open_with(tr_ctx *c, const char *const *sets, int wall_clock)
     if (tr_open(c, &cu_display_egl, W, H, 0))
         fail_msg("%s", c->err);
     c->r->ctx.log = count_changes;
-    c->r->timer_no_queries = wall_clock;
+    c->r->fb.no_queries = wall_clock;
     changes = 0;
     if (tr_render(c, "scenes/cumulus.scene", sets))
         fail_msg("%s", c->err);
@@ -63,8 +63,8 @@ static void walk_down(int wall_clock)
     assert_int_equal(cu_renderer_budget(c.r, &d, &g, &ms), 0);
     assert_int_equal(d, 1);
     assert_int_equal(g, 1);
-    assert_int_equal(c.r->budget.n, 5); /* (1,1) (2,1) (2,2) (2,3) (2,4) */
-    assert_int_equal(c.r->timer.mode, wall_clock ? CU_TIMER_WALL : CU_TIMER_QUERY);
+    assert_int_equal(c.r->fb.budget.n, 5); /* (1,1) (2,1) (2,2) (2,3) (2,4) */
+    assert_int_equal(c.r->fb.timer.mode, wall_clock ? CU_TIMER_WALL : CU_TIMER_QUERY);
     /* a window and its settling frames a rung, and the queries' frames in flight */
     frames(&c, (CU_BUDGET_WINDOW + CU_BUDGET_SETTLE) * 4 + CU_FRAME_TIMER_QUERIES + 2);
     assert_int_equal(cu_renderer_budget(c.r, &d, &g, &ms), 0);
@@ -181,7 +181,7 @@ static void test_host_query_open(void **st)
     const char *sets[] = {"quality.target_fps=1000", NULL};
     open_with(&c, sets, 0);
     frames(&c, CU_FRAME_TIMER_QUERIES + 1); /* the frames in flight so far are read back */
-    long seen = c.r->budget.frame;
+    long seen = c.r->fb.budget.frame;
     PFNGLGETQUERYOBJECTUI64VEXTPROC get_ui64 =
         (PFNGLGETQUERYOBJECTUI64VEXTPROC)eglGetProcAddress("glGetQueryObjectui64vEXT");
     assert_non_null(get_ui64);
@@ -199,7 +199,7 @@ static void test_host_query_open(void **st)
     }
     frames(&c, CU_FRAME_TIMER_QUERIES + 1);
     /* only the frames without the host's query were measured (the ones in flight before, and the last few) */
-    assert_true(c.r->budget.frame - seen <= CU_FRAME_TIMER_QUERIES + 1 + CU_FRAME_TIMER_QUERIES);
+    assert_true(c.r->fb.budget.frame - seen <= CU_FRAME_TIMER_QUERIES + 1 + CU_FRAME_TIMER_QUERIES);
     glDeleteQueries(1, &q);
     tr_close(&c);
 }
