@@ -37,6 +37,13 @@ static int size_for(const cu_renderer *r, const cu_cloud_slot *sl)
     return s;
 }
 
+/* The sun cloud sl is lit by: its maps' (Kol's method moves them in steps of CU_SUN_MAP_STEP), or, for the uniform
+ * march, which has no maps, the sun now. */
+static vec3 lit_by(const cu_renderer *r, const cu_cloud_slot *sl)
+{
+    return r->scene.method == CU_METHOD_UNIFORM ? r->sky.sun_dir : sl->maps_sun;
+}
+
 static double degrees_between(vec3 a, vec3 b)
 {
     double c = v3_dot(a, b);
@@ -90,7 +97,7 @@ static int make_image(cu_renderer *r, const cu_frame *f, cu_cloud_slot *sl, cons
     im->u = v3(view.m[0], view.m[4], view.m[8]);
     im->v = v3(view.m[1], view.m[5], view.m[9]);
     im->half = d * tan(alpha);
-    im->sun = sl->maps_sun;
+    im->sun = lit_by(r, sl);
     im->boil = sl->boil;
     im->factor = sl->factor;
     im->shadow_sig = sl->has_shadow ? sl->shadow_sig : 0;
@@ -116,7 +123,8 @@ int cu_frame_impostors(cu_renderer *r, const cu_frame *f, int visible, cu_error 
         vec3 axis = v3_scale(c->pos, -1.0 / v3_len(c->pos));
         int urgent = !im->valid || !im->in_use || size > im->size || im->linear != f->linear;
         int stale = degrees_between(axis, im->axis) > r->scene.impostor_degrees || size * 4 <= im->size ||
-                    v3_dot(im->sun, sl->maps_sun) < 1.0 - 1e-12 || fabs(im->factor - sl->factor) > 0.01 ||
+                    degrees_between(im->sun, lit_by(r, sl)) > 0.5 * CU_SUN_MAP_STEP ||
+                    fabs(im->factor - sl->factor) > 0.01 ||
                     v3_len(v3_sub(im->boil, sl->boil)) > CU_BOIL_STEP ||
                     im->shadow_sig != (sl->has_shadow ? sl->shadow_sig : 0);
         im->in_use = 1;
