@@ -1,6 +1,7 @@
 /* src/gpu/frame_budget.c: the frame budget in the renderer (see frame_budget.h): frames timed by frame_timer.c, rungs
  * chosen by budget.c, every change in the log with the median that caused it. */
 #include "frame_budget.h"
+#include <string.h>
 
 int cu_frame_budget_on(const cu_frame_budget *b)
 {
@@ -12,10 +13,20 @@ void cu_frame_budget_scene(cu_frame_budget *b, const cu_scene *s, const cu_gpu_s
 {
     b->d = s->cloud_downsample;
     b->g = s->temporal_grid;
+    cu_budget was = b->budget;
     cu_budget_init(&b->budget, s->target_fps, s->cloud_downsample, s->temporal_grid, s->max_downsample,
                    s->max_temporal_grid);
     if (!(s->target_fps > 0)) {
         b->budget.n = 0;
+        return;
+    }
+    /* The same budget over a new scene (an image generator rebuilding its layers as the weather changes): where it
+     * stood and what it measured stay, rather than walking the ladder again from the top. */
+    if (was.n == b->budget.n && was.target_ms == b->budget.target_ms &&
+        !memcmp(was.rung, b->budget.rung, sizeof was.rung)) {
+        b->budget = was;
+        b->d = b->budget.rung[b->budget.cur].downsample;
+        b->g = b->budget.rung[b->budget.cur].grid;
         return;
     }
     if (!b->timer_ready) {

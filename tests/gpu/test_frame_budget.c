@@ -1,9 +1,9 @@
 /* tests/gpu/test_frame_budget.c: the frame budget in the renderer (quality.target_fps; src/gpu/frame_budget.c,
  * frame_timer.c): a budget no frame can meet walks the whole ladder to the coarsest rung, one logged change a rung,
- * with GPU timer queries and with the wall clock; a budget every frame meets changes nothing, not a pixel; after the
- * walk a still view converges to the picture of those settings set by hand; a timer query's frame is no longer than
- * the wall clock around it; a host that has a timer query of its own open gets its frame drawn, unmeasured; and
- * cu_renderer_settled counts the frames a temporal grid still needs. */
+ * with GPU timer queries and with the wall clock, and stays there when the scene is set again; a budget every frame
+ * meets changes nothing, not a pixel; after the walk a still view converges to the picture of those settings set by
+ * hand; a timer query's frame is no longer than the wall clock around it; a host that has a timer query of its own
+ * open gets its frame drawn, unmeasured; and cu_renderer_settled counts the frames a temporal grid still needs. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -73,6 +73,14 @@ static void walk_down(int wall_clock)
     assert_true(ms > 1.0 && isfinite(ms));
     assert_int_equal(changes, 4);
     frames(&c, 20); /* nowhere further to go */
+    assert_int_equal(changes, 4);
+    /* the same scene again (an image generator rebuilding its layers): the budget stays where it stood */
+    if (tr_render(&c, "scenes/cumulus.scene", sets))
+        fail_msg("%s", c.err);
+    assert_int_equal(cu_renderer_budget(c.r, &d, &g, &ms), 0);
+    assert_int_equal(d, 2);
+    assert_int_equal(g, 4);
+    frames(&c, 16);
     assert_int_equal(changes, 4);
 
     /* a still view converges to the picture of these settings set by hand (16 frames for a 4 x 4 grid) */
