@@ -46,7 +46,22 @@ else t_fail idle_kiosk_draws_only_changes "exit $rc, status frames $f1 then $f2:
 
 # ... and a temporal grid draws until the picture has settled: a sun move of 0.1 deg from the scene's 30, 135 (less
 # than the 0.25 deg that redraws the grid whole) marches a quarter of the cloud pixels of a 2 x 2 grid, so the move takes 4 frames, not 1.
-{ sleep 1; printf 'sun 30.1 135\n'; sleep 0.5; printf 'quit\n'; } |
+# The move is sent once the first frame is drawn (a status line says frames=1 or more: a sanitizer build starts slowly),
+# and quit once eight more turns of the loop have passed (at most four of them draw).
+frames_seen() { sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$1" 2>/dev/null | tail -1; }
+feed_until_settled() {
+  _n=0
+  while [ "$(frames_seen "$1")" = "" ] || [ "$(frames_seen "$1")" -lt 1 ]; do
+    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
+  done
+  _f0=$(frames_seen "$1"); printf 'sun 30.1 135\n'; _n=0
+  while [ "$(frames_seen "$1")" -lt $((${_f0:-0} + 8)) ]; do
+    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
+  done
+  printf 'quit\n'
+}
+rm -f "$OUT/g.out"
+feed_until_settled "$OUT/g.out" |
   $C run $S --platform headless --size 64x48 --set quality.temporal_grid=2 >"$OUT/g.out" 2>"$OUT/g.err"
 rc=$?
 if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=5$' "$OUT/g.out"; then t_ok idle_kiosk_grid_draws_until_settled
