@@ -33,10 +33,24 @@ if grep -q '^status elevation=33.000 azimuth=330.000 knob=elevation' "$OUT/s.out
 else t_fail stdin_status_and_quit "$(cat "$OUT/s.out")"; fi
 
 # Nothing moved, nothing redrawn: headless without --frames, a frame in which nothing changed is not drawn; a sun
-# move draws one. Three quiet half-seconds around one move: two frames drawn (the first and the move's), while the
-# loop goes on counting the frames it held.
-{ sleep 0.5; printf 'status\n'; sleep 0.5; printf 'sun 30 100\n'; sleep 0.5; printf 'status\nquit\n'; } |
-  $C run $S --platform headless --size 64x48 >"$OUT/i.out" 2>"$OUT/i.err"
+# move draws one. The move is sent once the first frame is drawn (a status line says frames=1 or more: a sanitizer
+# build starts slowly, so fixed sleeps race it), and quit once eight more turns of the loop have passed: two frames
+# drawn (the first and the move's), while the loop goes on counting the frames it held.
+frames_seen() { sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$1" 2>/dev/null | tail -1; }
+# feed_move OUT COMMAND: stdin for `cumulo run` writing its stdout to OUT
+feed_move() {
+  _n=0
+  while [ "$(frames_seen "$1")" = "" ] || [ "$(frames_seen "$1")" -lt 1 ]; do
+    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
+  done
+  _f0=$(frames_seen "$1"); printf '%s\n' "$2"; _n=0
+  while [ "$(frames_seen "$1")" -lt $((${_f0:-0} + 8)) ]; do
+    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
+  done
+  printf 'quit\n'
+}
+rm -f "$OUT/i.out"
+feed_move "$OUT/i.out" 'sun 30 100' | $C run $S --platform headless --size 64x48 >"$OUT/i.out" 2>"$OUT/i.err"
 rc=$?
 f1=$(sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$OUT/i.out" | head -1)
 f2=$(sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$OUT/i.out" | tail -1)
@@ -45,23 +59,10 @@ if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=2$' "$OUT/i.out" && [ -n "$f1" ] 
 else t_fail idle_kiosk_draws_only_changes "exit $rc, status frames $f1 then $f2: $(tail -1 "$OUT/i.out")"; fi
 
 # ... and a temporal grid draws until the picture has settled: a sun move of 0.1 deg from the scene's 30, 135 (less
-# than the 0.25 deg that redraws the grid whole) marches a quarter of the cloud pixels of a 2 x 2 grid, so the move takes 4 frames, not 1.
-# The move is sent once the first frame is drawn (a status line says frames=1 or more: a sanitizer build starts slowly),
-# and quit once eight more turns of the loop have passed (at most four of them draw).
-frames_seen() { sed -n 's/^status .*frames=\([0-9]*\).*/\1/p' "$1" 2>/dev/null | tail -1; }
-feed_until_settled() {
-  _n=0
-  while [ "$(frames_seen "$1")" = "" ] || [ "$(frames_seen "$1")" -lt 1 ]; do
-    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
-  done
-  _f0=$(frames_seen "$1"); printf 'sun 30.1 135\n'; _n=0
-  while [ "$(frames_seen "$1")" -lt $((${_f0:-0} + 8)) ]; do
-    printf 'status\n'; sleep 0.2; _n=$((_n + 1)); [ $_n -ge 300 ] && break
-  done
-  printf 'quit\n'
-}
+# than the 0.25 deg that redraws the grid whole) marches a quarter of the cloud pixels of a 2 x 2 grid, so the move
+# takes 4 frames, not 1 (at most four of the eight turns after it draw).
 rm -f "$OUT/g.out"
-feed_until_settled "$OUT/g.out" |
+feed_move "$OUT/g.out" 'sun 30.1 135' |
   $C run $S --platform headless --size 64x48 --set quality.temporal_grid=2 >"$OUT/g.out" 2>"$OUT/g.err"
 rc=$?
 if [ $rc -eq 0 ] && grep -q '^\[run\] .* drawn=5$' "$OUT/g.out"; then t_ok idle_kiosk_grid_draws_until_settled
