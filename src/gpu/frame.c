@@ -280,6 +280,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     temporal_frame_identity(ctx);
     r->maps_deferred = 0;
     r->sparse_grid = 1;
+    r->frame_no++;
     cu_profile_begin(r);
     int visible = visible_clouds(r, view, proj, err);
     if (visible < 0)

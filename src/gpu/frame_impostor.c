@@ -121,13 +121,17 @@ int cu_frame_impostors(cu_renderer *r, const cu_frame *f, int visible, cu_error 
         }
         int size = size_for(r, sl);
         vec3 axis = v3_scale(c->pos, -1.0 / v3_len(c->pos));
-        int urgent = !im->valid || !im->in_use || size > im->size || im->linear != f->linear;
+        /* drawn from its image in the frame before, or it starts now: a cloud culled for a while and back in view
+         * (in_use still set from then) starts again too */
+        int continued = im->in_use && im->seen + 1 == r->frame_no;
+        int urgent = !im->valid || !continued || size > im->size || im->linear != f->linear;
         int stale = degrees_between(axis, im->axis) > r->scene.impostor_degrees || size * 4 <= im->size ||
                     degrees_between(im->sun, lit_by(r, sl)) > 0.5 * CU_SUN_MAP_STEP ||
                     fabs(im->factor - sl->factor) > 0.01 ||
                     v3_len(v3_sub(im->boil, sl->boil)) > CU_BOIL_STEP ||
                     im->shadow_sig != (sl->has_shadow ? sl->shadow_sig : 0);
         im->in_use = 1;
+        im->seen = r->frame_no;
         if (!urgent && stale && budget <= 0)
             r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
         if (!urgent && !(stale && budget > 0))

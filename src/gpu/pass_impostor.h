@@ -11,6 +11,7 @@ typedef struct cu_impostor {
     cu_target image;       /* size x size, premultiplied, the cloud pass's units */
     int size;
     int valid, in_use;     /* made and still the cloud's look; drawn from it the last frame the cloud was seen */
+    unsigned long seen;    /* the renderer's frame_no when it was last drawn from it */
     vec3 axis, u, v;       /* unit: from the eye it was made from to the centre; the image's right and up */
     double half;           /* m: half the square's side (the image's frustum at the centre) */
     vec3 sun, boil;        /* the cloud's maps_sun and boil it was made with */

@@ -50,6 +50,7 @@ struct cu_renderer {
     int temporal_off_said;          /* the log line saying why the grid is not used this scene */
     cu_pass_impostor pass_impostor; /* quality.impostor_pixels > 0 (prog 0 otherwise) */
     long impostors_made;  /* impostor images made since the scene was set (tests read it) */
+    unsigned long frame_no; /* frames rendered by this renderer (impostors drawn in the frame before are current) */
     cu_pass_shadow pass_shadow;
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
