@@ -173,15 +173,18 @@ float ext_diffuse(vec3 p)
 }
 #endif
 
-// The same for a sample whose (delta-M scaled) optical depth toward the sun is ts.
+// The same for a sample whose (delta-M scaled) optical depth toward the sun is ts. The octaves (Wrenninge) attenuate
+// by a^o of the optical depth itself, not the delta-M one: diffused light depends on the medium's transport, (1 - g) k_e
+// (van de Hulst's similarity), not on how much of the phase function's peak the table chopped off, so one fit of a, b,
+// c (docs/ms_octaves_fit.md) serves the Mie table and Henyey-Greenstein alike.
 vec3 source_from(float ts, vec3 ph0)
 {
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
-    float ao = 1.0;
+    float ao = 1.0, t_full = ts / DM_SCALE;
     for (int o = 1; o < MS_OCTAVES; o++) {
         ao *= u_ms_abc.x;
-        S += vec3(ph_oct[o] * exp(-ao * ts));
+        S += vec3(ph_oct[o] * exp(-ao * t_full));
     }
 #endif
     return S;

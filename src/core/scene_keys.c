@@ -201,10 +201,13 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
          "search), octaves (Wrenninge) or none",
          S(ms_mode)),
     /* Wrenninge's a, b, c in [0, 1]: the octaves' factors a^o, b^o, c^o shrink, so their sums stay <= octaves */
-    INT("ms", "octaves", 1, "4", 1, 8, 0, "", "mode = octaves: Wrenninge's octave count", S(ms_octaves)),
-    NUM("ms", "a", 1, "0.5", 0, 1, 0, "", "mode = octaves: extinction factor per octave", S(ms_a)),
-    NUM("ms", "b", 1, "0.5", 0, 1, 0, "", "mode = octaves: scattering factor per octave", S(ms_b)),
-    NUM("ms", "c", 1, "0.5", 0, 1, 0, "", "mode = octaves: anisotropy factor per octave", S(ms_c)),
+    /* the defaults: `make fit-octaves` (docs/ms_octaves_fit.txt; tests/app/test_cli.sh checks), not the textbook's */
+    INT("ms", "octaves", 1, "8", 1, 8, 0, "", "mode = octaves: Wrenninge's octave count (fitted to the path tracer)",
+        S(ms_octaves)),
+    NUM("ms", "a", 1, "0.2", 0, 1, 0, "", "mode = octaves: extinction factor per octave (fitted; textbook 0.5)",
+        S(ms_a)),
+    NUM("ms", "b", 1, "0.5", 0, 1, 0, "", "mode = octaves: scattering factor per octave (fitted)", S(ms_b)),
+    NUM("ms", "c", 1, "0.5", 0, 1, 0, "", "mode = octaves: anisotropy factor per octave (fitted)", S(ms_c)),
     BOOL("ms", "sky_light", "on",
          "sky and ground light; with slab or collector and a Preetham sky, sky and ground told apart by the slab "
          "model",

@@ -102,4 +102,15 @@ done
 if [ -z "$bad" ]; then t_ok "presets in src/core/presets.c match docs/sweep_presets.txt"
 else t_fail "presets in src/core/presets.c match docs/sweep_presets.txt" "differ:$bad"; fi
 
+# The octave model's defaults (src/core/scene_keys.c, printed into README.md's key table, which test_keys.sh keeps in
+# step) are the ones `cumulo-sweep --fit-octaves` chose (docs/ms_octaves_fit.txt).
+bad=""
+for k in octaves a b c; do
+  want=$(sed -n "s/^ms\.$k=//p" docs/ms_octaves_fit.txt)
+  have=$(awk -F' *[|] *' -v k="$k" '$2 == "ms" && $3 == k { print $5 }' README.md)
+  [ -n "$want" ] && [ "$want" = "$have" ] || bad="$bad ms.$k:docs=$want,keys=$have"
+done
+if [ -z "$bad" ]; then t_ok "octave defaults match docs/ms_octaves_fit.txt"
+else t_fail "octave defaults match docs/ms_octaves_fit.txt" "differ:$bad"; fi
+
 t_summary

@@ -85,8 +85,7 @@ static void make_points(mpoint *pt)
     }
 }
 
-/* The view's cloud mask: its sky alone (every cloud's density 0) at the error size, against the reference. */
-static int view_mask(sweep *sw, view *v)
+int sw_view_cloud_mask(sweep *sw, view *v)
 {
     config sky;
     config_high(&sky);
@@ -266,7 +265,7 @@ int sw_methods_run(sweep *sw)
             fprintf(stderr, "cumulo-sweep: out of memory\n");
             rc = 1;
         } else {
-            rc = view_mask(sw, &sw->v[s]) || sw_measure_view(sw, &sw->v[s], cfg, N_CFG, res[s]);
+            rc = sw_view_cloud_mask(sw, &sw->v[s]) || sw_measure_view(sw, &sw->v[s], cfg, N_CFG, res[s]);
         }
     }
     if (rc == 0)

@@ -14,6 +14,9 @@
 #define QUICK_SCENES "cumulus,silver_lining"
 #define METHODS_SCENES "sweep_cumulus_hg,sweep_silver_lining_hg,sweep_below_hg,sweep_low_sun_hg"
 #define METHODS_BASELINE "scenes/sweep_cumulus_hg.scene"
+#define FIT_SCENES "scenes/fit/sphere_side.scene,scenes/fit/tower_backlit.scene,scenes/fit/layer_below.scene," \
+    "scenes/fit/cluster_front.scene"
+#define FIT_SPP 1024
 
 static const char HELP[] =
     "usage: cumulo-sweep [OPTION]...\n"
@@ -47,6 +50,9 @@ static const char HELP[] =
     "                       error on the cloud's pixels with contrast and SSIM; writes DIR/methods.md, methods.csv,\n"
     "                       methods.dat (default views " METHODS_SCENES ",\n"
     "                       baseline " METHODS_BASELINE ", time size 320x240)\n"
+    "  --fit-octaves        instead of the knobs: fit the octave model of multiple scattering (ms.octaves, ms.a, ms.b,\n"
+    "                       ms.c) to the path tracer by coordinate descent on the cloud's pixels, error only; writes\n"
+    "                       DIR/fit.md, fit.csv, fit.txt (default views the training scenes in scenes/fit/, 1024 spp)\n"
     "  -h, --help           this help, then exit\n"
     "  -V, --version        the version, then exit\n"
     "\n"
@@ -54,7 +60,7 @@ static const char HELP[] =
     "Run it from the source tree (scenes/, data/, scripts/sweep_plot.sh); `make sweep` runs it with the defaults.\n";
 
 enum { O_SCENES = 256, O_OUT, O_REFDIR, O_BASELINE, O_SIZE, O_TSIZE, O_SPP, O_PTTHREADS, O_FRAMES, O_WARMUP,
-       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY, O_METHODS };
+       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY, O_METHODS, O_FIT };
 
 static const struct option LONG[] = {
     {"scenes", required_argument, NULL, O_SCENES},       {"out", required_argument, NULL, O_OUT},
@@ -65,6 +71,7 @@ static const struct option LONG[] = {
     {"threshold", required_argument, NULL, O_THRESHOLD}, {"budgets", required_argument, NULL, O_BUDGETS},
     {"quick", no_argument, NULL, O_QUICK},               {"sun-every-frame", no_argument, NULL, O_SUN},
     {"refs-only", no_argument, NULL, O_REFSONLY},        {"methods", no_argument, NULL, O_METHODS},
+    {"fit-octaves", no_argument, NULL, O_FIT},
     {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, 'V'},                 {NULL, 0, NULL, 0},
 };
@@ -236,6 +243,9 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         case O_METHODS:
             sw->methods = 1;
             break;
+        case O_FIT:
+            sw->fit = 1;
+            break;
         default:
             return bad("unknown option '%s' (see --help)", argv[optind - 1]);
         }
@@ -254,6 +264,14 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         if (!set_frames)
             sw->frames = 3;
         sw->warmup = sw->warmup < 1 ? sw->warmup : 1;
+    }
+    if (sw->methods && sw->fit)
+        return bad("--methods and --fit-octaves are two different runs: give one");
+    if (sw->fit) {
+        if (!scenes)
+            scenes = FIT_SCENES;
+        if (!set_spp && !sw->quick)
+            sw->spp = FIT_SPP;
     }
     if (sw->methods) {
         if (!scenes)

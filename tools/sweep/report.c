@@ -8,7 +8,7 @@
 
 const char *const sw_preset_names[3] = {"low", "medium", "high"};
 
-static FILE *open_out(const sweep *sw, const char *name)
+FILE *sw_open_out(const sweep *sw, const char *name)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/%s", sw->out, name);
@@ -18,7 +18,7 @@ static FILE *open_out(const sweep *sw, const char *name)
     return f;
 }
 
-static int close_out(const sweep *sw, FILE *f, const char *name)
+int sw_close_out(const sweep *sw, FILE *f, const char *name)
 {
     if (ferror(f) | fclose(f))
         return fprintf(stderr, "cumulo-sweep: error writing %s/%s\n", sw->out, name), 1;
@@ -48,7 +48,7 @@ void sw_csv_row(sweep *sw, const char *kind, const char *scene, const char *knob
 
 int sw_write_presets(const sweep *sw, const point *const presets[3])
 {
-    FILE *f = open_out(sw, "presets.txt");
+    FILE *f = sw_open_out(sw, "presets.txt");
     if (!f)
         return 1;
     fprintf(f, "# cumulo presets from `cumulo sweep` (budgets: medium <= %.2fx, low <= %.2fx of high's frame time;\n"
@@ -64,13 +64,13 @@ int sw_write_presets(const sweep *sw, const point *const presets[3])
         printf("preset %-6s time %.3fx relRMSE %.4f: %s\n", sw_preset_names[p], presets[p]->agg.time_ratio,
                presets[p]->agg.rel_rmse, line);
     }
-    return close_out(sw, f, "presets.txt");
+    return sw_close_out(sw, f, "presets.txt");
 }
 
 int sw_write_pareto(const sweep *sw, const result *agg, const int *vknob, const int *vval, int nv, const point *trail,
                     int ntrail, const point *const presets[3])
 {
-    FILE *f = open_out(sw, "pareto.dat");
+    FILE *f = sw_open_out(sw, "pareto.dat");
     if (!f)
         return 1;
     fprintf(f, "# time_ratio rel_rmse kind label (kind 0 = one knob, 1 = greedy combination, 2 = preset, 9 = mean "
@@ -89,13 +89,13 @@ int sw_write_pareto(const sweep *sw, const result *agg, const int *vknob, const 
     for (int s = 0; s < sw->nviews; s++)
         noise += sw->v[s].pt_rel_noise / sw->nviews;
     fprintf(f, "0 %.5f 9 \"reference noise\"\n", noise);
-    return close_out(sw, f, "pareto.dat");
+    return sw_close_out(sw, f, "pareto.dat");
 }
 
 int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int *vval, int nv,
                 const point *const presets[3], result *const *per_view)
 {
-    FILE *f = open_out(sw, "sweep.md");
+    FILE *f = sw_open_out(sw, "sweep.md");
     if (!f)
         return 1;
     const char *lp = getenv("LP_NUM_THREADS");
@@ -153,5 +153,5 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
                 r->time_ms, r->rel_rmse, r->rel_bias, r->psnr, r->peak, r->maxabs, r->visible, sw->v[s].pt_rel_noise,
                 sw->v[s].pt_mean_se);
     }
-    return close_out(sw, f, "sweep.md");
+    return sw_close_out(sw, f, "sweep.md");
 }

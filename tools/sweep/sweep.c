@@ -166,6 +166,8 @@ int sw_run(sweep *sw)
         return 0;
     if (sw->methods)
         return sw_methods_run(sw);
+    if (sw->fit)
+        return sw_fit_run(sw);
 
     static config vars[MAX_VARIANTS];
     static int vknob[MAX_VARIANTS], vval[MAX_VARIANTS], vidx[SW_NKNOBS * SW_MAX_VALUES];

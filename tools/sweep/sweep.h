@@ -95,6 +95,7 @@ typedef struct sweep {
     int sun_moving;        /* --sun-every-frame: time frames that redo the sun pass, as `cumulo bench` does */
     int refs_only;
     int methods;           /* --methods: Kol's method against the uniform ray march (methods.c) */
+    int fit;               /* --fit-octaves: the octave model fitted to the path tracer (fit.c) */
     double budget_med, budget_low;
     const char *out, *refdir, *plot, *baseline;
     int nviews;
@@ -151,6 +152,14 @@ int sw_measure_config(sweep *sw, const config *c, const char *kind, const char *
 /* cumulo-sweep --methods: Kol's method (presets and segment counts) against the uniform ray march (steps along the
  * view and toward the sun) on every view, timed in one interleaved run; writes methods.csv, methods.md, methods.dat. */
 int sw_methods_run(sweep *sw);
+/* The view's cloud mask (v->mask, mask_n, ref_contrast): its sky alone (every cloud's density 0) rendered at the
+ * error size, against the reference. 0, or 1 with a message. */
+int sw_view_cloud_mask(sweep *sw, view *v);
+
+/* ---- fit.c ---- */
+/* cumulo-sweep --fit-octaves: the octave model's count and factors fitted to the views' references; writes fit.csv,
+ * fit.md and fit.txt. */
+int sw_fit_run(sweep *sw);
 
 /* ---- choose.c ---- */
 /* Greedy preset choice from the one-knob aggregates (vidx maps knob * SW_MAX_VALUES + value to a variant, -1 if not
@@ -159,6 +168,9 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, doub
                       point *trail, int *ntrail);
 
 /* ---- report.c ---- */
+/* DIR/name opened for writing (NULL with a message), and closed with its write errors reported (1 with a message). */
+FILE *sw_open_out(const sweep *sw, const char *name);
+int sw_close_out(const sweep *sw, FILE *f, const char *name);
 /* sweep.csv: the two header lines, then rows. */
 void sw_csv_header(sweep *sw);
 void sw_csv_row(sweep *sw, const char *kind, const char *scene, const char *knob, const char *value, const config *c,

@@ -3,7 +3,7 @@
 # the plot, the table, the presets and the CSV to docs/. Not part of `make check`. SWEEP_ARGS adds options.
 # The sweep links the path tracer (tools/pathtrace/pt.o) and renders its references in-process.
 SWEEP_SRCS := $(addprefix tools/sweep/,main.c options.c knobs.c reference.c metrics.c measure.c choose.c report.c \
-              sweep.c methods.c)
+              sweep.c methods.c fit.c)
 SWEEP_OBJS := $(SWEEP_SRCS:%.c=$(B)/obj/%.o)
 CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp -Itools/pathtrace $(PLATFORM_CPPFLAGS) -I$(B)/gen \
                 $(LIB_CFLAGS)
@@ -53,3 +53,17 @@ sweep-methods: $(B)/cumulo-sweep
 	cp $(METHODS_DIR)/methods.md docs/methods.md
 	cp $(METHODS_DIR)/methods.csv docs/methods.csv
 	@if [ -f $(METHODS_DIR)/methods.png ]; then cp $(METHODS_DIR)/methods.png docs/methods.png; fi
+
+# `make fit-octaves`: cumulo-sweep --fit-octaves (issue 14), the octave model of multiple scattering fitted to the path
+# tracer on the training views in scenes/fit/ (about 10 min, references cached with the sweep's); copies the report
+# to docs/ms_octaves_fit.md and the chosen keys to docs/ms_octaves_fit.txt, which src/core/scene_keys.c's defaults
+# must match (tests/app/test_cli.sh). Not part of `make check`.
+.PHONY: sweep-methods fit-octaves
+FIT_DIR  ?= $(B)/fit-octaves
+FIT_ARGS ?=
+fit-octaves: $(B)/cumulo-sweep
+	@start=$$(date +%s); \
+	$(TEST_ENV) $(B)/cumulo-sweep --fit-octaves --out $(FIT_DIR) --ref-dir $(SWEEP_DIR)/ref $(FIT_ARGS) || exit $$?; \
+	echo "fit-octaves: took $$(( $$(date +%s) - start )) s"
+	cp $(FIT_DIR)/fit.md docs/ms_octaves_fit.md
+	cp $(FIT_DIR)/fit.txt docs/ms_octaves_fit.txt
