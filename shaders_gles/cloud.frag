@@ -177,14 +177,21 @@ float ext_diffuse(vec3 p)
 // by a^o of the optical depth itself, not the delta-M one: diffused light depends on the medium's transport, (1 - g) k_e
 // (van de Hulst's similarity), not on how much of the phase function's peak the table chopped off, so one fit of a, b,
 // c (docs/ms_octaves_fit.md) serves the Mie table and Henyey-Greenstein alike.
+#if MS_MODE == 1
+// 1 - e^-tau_c for the optical size tau_c (delta-M) of the cloud the ray is in: the chance that scattered light
+// scatters once more before it leaves. Octave o is light scattered about o + 1 times, so it is weighted by oct_keep^o:
+// the thin limit of order o + 1 goes as tau_c^o, and a thick cloud keeps every octave (1).
+float oct_keep = 1.0;
+#endif
 vec3 source_from(float ts, vec3 ph0)
 {
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
-    float ao = 1.0, t_full = ts / DM_SCALE;
+    float ao = 1.0, keep = 1.0, t_full = ts / DM_SCALE;
     for (int o = 1; o < MS_OCTAVES; o++) {
         ao *= u_ms_abc.x;
-        S += vec3(ph_oct[o] * exp(-ao * t_full));
+        keep *= oct_keep;
+        S += vec3(keep * ph_oct[o] * exp(-ao * t_full));
     }
 #endif
     return S;
@@ -253,6 +260,9 @@ void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, in
                                              vec2(0.06711056, 0.00583715))));
     vec3 J = mix(u_ground_rad, u_sky_rad, 0.5);
     float taup = 0.0;
+#if MS_MODE == 1
+    oct_keep = 1.0 - exp(-DM_SCALE * u_ke * (b - a));
+#endif
     for (int i = 0; i < UNIFORM_STEPS; i++) {
         float t = a + (float(i) + jit) * dt;
         vec3 p = ro + dir * t;
@@ -399,6 +409,9 @@ void main()
         // trapezoids; just inside, they see the one-sided limit. Segment lengths stay those of [a, b].
         float len = b - a;
         float nudge = min(1e-3 * len, 0.05);
+#if MS_MODE == 1
+        oct_keep = 1.0 - exp(-DM_SCALE * u_ke * len);
+#endif
         // Knots: the boundary ramps get segments of their own, the core SEGMENTS per merged chord in geometric
         // progression (make_knots in density.glsl).
         knots kn = make_knots(a, len, nudge, SEGMENTS * merged, u_seg_ratio, true);

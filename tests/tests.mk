@@ -43,7 +43,7 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 # one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render).
 $(foreach t,render sunmap ms fallback field sky temporal composite impostor,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
-CHECK_TESTS += tests/gpu/test_ms_slab.sh
+CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
 $(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # Issue 7's extremes matrix (it reads the temporal history and impostor images back with GLES itself).
