@@ -72,8 +72,6 @@ uniform int u_phase_n;
 uniform vec3 u_sun_irr;        // irradiance on a plane perpendicular to the sun's rays
 uniform vec3 u_sky_rad;        // mean radiance of the sky (upper hemisphere)
 uniform vec3 u_ground_rad;     // radiance of the ground (lower hemisphere; the sky colour for a constant sky)
-uniform vec3 u_ms_abc;         // Wrenninge octave factors a (extinction), b (scattering), c (anisotropy)
-uniform float u_ms_g;          // anisotropy of the octave phase functions
 uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
 uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
 uniform vec4 u_px_map;         // this pass's pixel -> the cloud image's: xy * u_px_map.xy + u_px_map.zw (temporal_grid)
@@ -122,7 +120,9 @@ float hg(float g, float mu)
 #define DM_SCALE 1.0
 #endif
 
-float ph_oct[MS_OCTAVES];
+#if MS_MODE == 1
+#include "ms_octaves.glsl"
+#endif
 
 // Light a segment of optical depth dt scatters toward its entry, per unit of source: int_0^dt e^-u S(u) du with S
 // log-linear from S0 to S1, S(u) = S0 e^(-b u / dt), b = ln(S0 / S1): S0 dt (1 - e^-(dt + b)) / (dt + b). The
@@ -173,26 +173,12 @@ float ext_diffuse(vec3 p)
 }
 #endif
 
-// The same for a sample whose (delta-M scaled) optical depth toward the sun is ts. The octaves (Wrenninge) attenuate
-// by a^o of the optical depth itself, not the delta-M one: diffused light depends on the medium's transport, (1 - g) k_e
-// (van de Hulst's similarity), not on how much of the phase function's peak the table chopped off, so one fit of a, b,
-// c (docs/ms_octaves_fit.md) serves the Mie table and Henyey-Greenstein alike.
-#if MS_MODE == 1
-// 1 - e^-tau_c for the optical size tau_c (delta-M) of the cloud the ray is in: the chance that scattered light
-// scatters once more before it leaves. Octave o is light scattered about o + 1 times, so it is weighted by oct_keep^o:
-// the thin limit of order o + 1 goes as tau_c^o, and a thick cloud keeps every octave (1).
-float oct_keep = 1.0;
-#endif
+// The same for a sample whose (delta-M scaled) optical depth toward the sun is ts.
 vec3 source_from(float ts, vec3 ph0)
 {
     vec3 S = ph0 * exp(-ts);
 #if MS_MODE == 1
-    float ao = 1.0, keep = 1.0, t_full = ts / DM_SCALE;
-    for (int o = 1; o < MS_OCTAVES; o++) {
-        ao *= u_ms_abc.x;
-        keep *= oct_keep;
-        S += vec3(keep * ph_oct[o] * exp(-ao * t_full));
-    }
+    S += octaves_source(ts / DM_SCALE);
 #endif
     return S;
 }
@@ -261,7 +247,7 @@ void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, in
     vec3 J = mix(u_ground_rad, u_sky_rad, 0.5);
     float taup = 0.0;
 #if MS_MODE == 1
-    oct_keep = 1.0 - exp(-DM_SCALE * u_ke * (b - a));
+    octaves_interval(DM_SCALE * u_ke * (b - a));
 #endif
     for (int i = 0; i < UNIFORM_STEPS; i++) {
         float t = a + (float(i) + jit) * dt;
@@ -372,11 +358,7 @@ void main()
     float mu = dot(-u_sun_dir, -dir);   // cos Theta = s_L . v, v from the sample toward the eye
     vec3 ph0 = phase_table(mu, 0);
 #if MS_MODE == 1
-    float bo = 1.0, go = u_ms_g;
-    for (int o = 1; o < MS_OCTAVES; o++) {
-        bo *= u_ms_abc.y; go *= u_ms_abc.z;
-        ph_oct[o] = bo * hg(go, mu);
-    }
+    octaves_phase(mu);
 #endif
 
     float tau = 0.0;      // optical depth from the eye to the current sample
@@ -410,7 +392,7 @@ void main()
         float len = b - a;
         float nudge = min(1e-3 * len, 0.05);
 #if MS_MODE == 1
-        oct_keep = 1.0 - exp(-DM_SCALE * u_ke * len);
+        octaves_interval(DM_SCALE * u_ke * len);
 #endif
         // Knots: the boundary ramps get segments of their own, the core SEGMENTS per merged chord in geometric
         // progression (make_knots in density.glsl).

@@ -1,5 +1,5 @@
-/* src/gpu/shading.h: the uniforms and textures of shaders_gles/cloud.frag (with ms_slab.glsl, ms_collector.glsl),
- * shared by the programs built from it: the cloud pass (hulls, full screen) and the energy closure. */
+/* src/gpu/shading.h: the uniforms and textures of shaders_gles/cloud.frag (with ms_octaves.glsl, ms_slab.glsl,
+ * ms_collector.glsl), shared by the programs built from it: the cloud pass (hulls, full screen) and the energy closure. */
 #ifndef CU_SHADING_H
 #define CU_SHADING_H
 #include "gpu_scene.h"
