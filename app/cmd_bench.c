@@ -30,7 +30,8 @@ static const char bench_help[] =
     "  --warmup N             frames rendered first and not measured (default 3)\n"
     "  --csv FILE             append one row to FILE (header written when the file is new)\n"
     "  --sun-every-frame      move the sun 0.01 deg of azimuth each frame (measures the sun-dependent passes)\n"
-    "  --passes               time each pass too (glFinish between them) and print their medians\n"
+    "  --passes               time each pass too and print their medians (GPU timestamps where the context\n"
+    "                         has them, else the wall clock with glFinish between passes)\n"
     "  --time-step S          advance the scene time S seconds each frame (wind, life cycles, boil, time_utc)\n"
     "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n"
     "  --camera MODE          static (the scene's [camera], default); orbit: a new pose every frame, passed as\n"
@@ -253,7 +254,7 @@ int cmd_bench(int argc, char **argv)
     printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts, 1000.0 / med, med, p95,
            frames);
     if (passes) { /* each pass's median over the frames (the medians need not add up to the frame's) */
-        printf("[%s] %s: passes (median ms, glFinish between them):", base, opts);
+        printf("[%s] %s: passes (median ms, %s):", base, opts, cu_renderer_profiling_clock(s.r));
         for (int k = 0; k < CU_PASS_COUNT; k++)
             printf(" %s=%.3f", cu_pass_name(k), median(t_pass + (size_t)k * frames, frames));
         printf("\n");

@@ -153,10 +153,14 @@ enum { CU_PASS_MAPS, CU_PASS_SHADOWS, CU_PASS_ENERGY, CU_PASS_SKY, CU_PASS_CLOUD
  * temporal_grid's resolve, and the sky pass that composites them into the output when it does), "tonemap";
  * NULL outside 0..CU_PASS_COUNT-1. */
 const char *cu_pass_name(int pass);
-/* 1: time every pass of each frame by the wall clock between glFinish calls (which serialise CPU and GPU, so a
- * profiled frame is slower than a plain one and its passes add up to a little less than it); 0: off, the default.
- * GPU timer queries (EXT_disjoint_timer_query) are not used yet. */
+/* 1: time every pass of each frame; 0: off, the default. By GPU timestamps where the context has them
+ * (EXT_disjoint_timer_query's glQueryCounterEXT on GLES, GL 3.3 on desktop GL; read back at the end of cu_render,
+ * which then waits for the GPU), else by the wall clock between glFinish calls (which serialise CPU and GPU, so a
+ * profiled frame is slower than a plain one and its passes add up to a little less than it). */
 void cu_renderer_set_profiling(cu_renderer *r, int on);
+/* How the passes are timed: "GPU timestamps", "wall clock, glFinish between passes", or "not chosen yet" before the
+ * first profiled frame. */
+const char *cu_renderer_profiling_clock(const cu_renderer *r);
 /* The last profiled frame's milliseconds per pass into ms[CU_PASS_COUNT]: 0, or 1 when none was profiled. */
 int  cu_renderer_pass_times(const cu_renderer *r, double ms[CU_PASS_COUNT]);
 

@@ -60,6 +60,9 @@ CHECK_TESTS += tests/gpu/test_host_scene.sh
 # changing nothing, a host's own timer query (it draws GLES itself, like the embedding tests).
 $(eval $(call test_program,test_frame_budget,tests/gpu/test_frame_budget.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) \
   $(GLES_LIBS)))
+# Pass timing (cu_renderer_set_profiling): the wall clock on llvmpipe, GPU timestamps forced on GLES and desktop GL,
+# inside a host's own timer query (it draws GLES itself).
+$(eval $(call test_program,test_profile,tests/gpu/test_profile.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))
 # A sky of many clouds: compositing, clear sky, wind, wrap-around, no pops over 10 minutes, a day without NaN (it
 # draws into float framebuffers of its own, so it links GLES like the embedding tests).
 $(eval $(call test_program,test_sky_field,tests/gpu/test_sky_field.c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS) $(GLES_LIBS)))

@@ -465,6 +465,7 @@ int cu_render(cu_renderer *r, const cu_frame *f, cu_error *err)
     cu_frame_budget_before(&r->fb, &r->ctx);
     cu_frame_budget_begin(&r->fb, gl);
     int rc = render_frame(r, f, err);
+    cu_profile_end(r, rc == 0);
     cu_frame_budget_end(&r->fb, gl);
     if (rc == 0)
         note_settling(r, f);

@@ -134,6 +134,7 @@ void cu_renderer_destroy(cu_renderer *r)
         return;
     delete_scene_objects(r);
     cu_frame_budget_free(&r->fb, &r->gl);
+    cu_pass_clock_free(&r->prof, &r->gl);
     if (r->noise_ready)
         cu_noise_destroy(&r->noise);
     cu_pass_slab_free(&r->pass_slab);

@@ -5,6 +5,7 @@
 #include "cloud_set.h"
 #include "frame_budget.h"
 #include "gpu_scene.h"
+#include "pass_clock.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
 #include "pass_shadow.h"
@@ -33,6 +34,7 @@ struct cu_renderer {
     double wrap_cx, wrap_cz; /* cu_renderer_set_wrap_center's, kept across scenes */
     int profile, profiled;   /* cu_renderer_set_profiling; a frame was profiled */
     double pass_ms[CU_PASS_COUNT], prof_t; /* this frame's times per pass (ms), and the last mark's clock */
+    cu_pass_clock prof;      /* how the passes are timed: GPU timestamps or the wall clock (profile.c) */
     int *order;           /* this frame's visible clouds, back to front (clouds.n) */
     double *order_key;
     cu_camera *cams;      /* each cloud's camera this frame */
