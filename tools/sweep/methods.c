@@ -32,6 +32,10 @@ static const struct {
     {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments", 0},
     {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments", 0},
     {CU_PRESET_LOW, "", "low", 0},
+    /* the opacity map read at the nearest texel: a quarter of the lookups of the bilinear default */
+    {CU_PRESET_MEDIUM, "light.sun_filter=nearest", "medium, nearest sun map", 0},
+    {CU_PRESET_MEDIUM, "quality.segments=2;light.sun_filter=nearest", "medium, 2 segments, nearest sun map", 0},
+    {CU_PRESET_LOW, "light.sun_filter=nearest", "low, nearest sun map", 0},
     /* the slab model at its cheapest: few segments, small maps, a coarse hull */
     {CU_PRESET_HIGH, "quality.segments=2;quality.sun_map_size=64;quality.hull_tessellation=6", "high, 2 segments, "
      "64^2 maps, hull 6", 0},
@@ -45,12 +49,15 @@ static const struct {
 };
 #define N_KOL ((int)(sizeof KOL / sizeof KOL[0]))
 /* The uniform march: steps along the view x steps toward the sun, with the baked noise (the default; what a
- * real-time march reads) and, for the outside comparison's two settings, the exact noise. */
+ * real-time march reads) and, for the outside comparison's two settings, the exact noise; its cheapest settings also
+ * at half resolution (quality.cloud_downsample = 2, as `low` draws Kol's: Nubis and Frostbite march at reduced
+ * resolution too). */
 static const struct {
-    int n, m, baked;
+    int n, m, baked, down;
 } UNI[] = {
-    {8, 2, 1}, {8, 4, 1}, {16, 2, 1}, {16, 4, 1}, {16, 8, 1}, {32, 2, 1}, {32, 4, 1}, {32, 8, 1}, {64, 4, 1},
-    {64, 6, 1}, {64, 8, 1}, {128, 4, 1}, {128, 8, 1}, {16, 4, 0}, {64, 6, 0},
+    {8, 2, 1, 1},  {8, 4, 1, 1},  {16, 2, 1, 1},  {16, 4, 1, 1}, {16, 8, 1, 1}, {32, 2, 1, 1},
+    {32, 4, 1, 1}, {32, 8, 1, 1}, {64, 4, 1, 1},  {64, 6, 1, 1}, {64, 8, 1, 1}, {128, 4, 1, 1},
+    {128, 8, 1, 1}, {16, 4, 0, 1}, {64, 6, 0, 1}, {8, 2, 1, 2},  {8, 4, 1, 2},  {16, 4, 1, 2},
 };
 #define N_UNI ((int)(sizeof UNI / sizeof UNI[0]))
 #define N_CFG (N_KOL + N_UNI)
@@ -75,13 +82,13 @@ static void make_points(mpoint *pt)
     for (int i = 0; i < N_UNI; i++, n++) {
         pt[n].family = FAM_UNIFORM;
         pt[n].control = !UNI[i].baked; /* the exact noise: the outside comparison's, beside the curve */
-        snprintf(pt[n].label, sizeof pt[n].label, "uniform %d / %d%s", UNI[i].n, UNI[i].m,
-                 UNI[i].baked ? "" : ", exact noise");
+        snprintf(pt[n].label, sizeof pt[n].label, "uniform %d / %d%s%s", UNI[i].n, UNI[i].m,
+                 UNI[i].baked ? "" : ", exact noise", UNI[i].down == 2 ? ", 1/2 resolution" : "");
         config_high(&pt[n].c);
         snprintf(pt[n].c.extra, SW_EXTRA_LEN,
                  "ms.mode=octaves;quality.method=uniform;quality.uniform_steps=%d;quality.uniform_sun_steps=%d;"
-                 "quality.noise_baked=%s",
-                 UNI[i].n, UNI[i].m, UNI[i].baked ? "on" : "off");
+                 "quality.noise_baked=%s;quality.cloud_downsample=%d",
+                 UNI[i].n, UNI[i].m, UNI[i].baked ? "on" : "off", UNI[i].down);
     }
 }
 
