@@ -70,6 +70,9 @@ $(eval $(call test_program,test_sky_field,tests/gpu/test_sky_field.c $(HEADLESS)
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh tests/app/test_sky_cli.sh
 CHECK_TESTS += tests/app/test_sun_cli.sh tests/app/test_sweep_methods.sh tests/app/test_sweep_fit.sh
+# The sweep's cloud metrics (tools/sweep/metrics.c) on images whose answers are known; no GL.
+$(eval $(call test_program,test_sweep_metrics,tests/sweep/test_sweep_metrics.c tools/sweep/metrics.c $(CORE),\
+  -Itools/sweep,$(LIB_LIBS)))
 
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))

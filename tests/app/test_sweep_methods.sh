@@ -31,6 +31,16 @@ bad=$(awk '!/^#/ { for (i = 1; i <= 6; i++) if ($i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?
 n=$(grep -vc '^#' "$D")
 [ -z "$bad" ] && [ "$n" -eq 35 ] && t_ok "every metric finite and in range (35 rows)" ||
   t_fail "every metric finite and in range" "$n rows; $bad"
+# Where the light goes: five numbers a row in the CSV (the light over the path tracer's in each fifth of the cloud's
+# pixels by brightness), each finite and positive, and the same five in the view's table.
+bad=$(awk -F, 'NR > 2 { n = NF; for (i = n - 4; i <= n; i++) if ($i !~ /^[0-9.]+(e[-+]?[0-9]+)?$/ || $i <= 0) {
+                 print NR ": " $0; next } }' "$T/methods.csv")
+csv5=$(awk -F, '$2 == "kol" && $3 == "\"high\"" { printf "%.2f %.2f %.2f %.2f %.2f", $(NF-4), $(NF-3), $(NF-2), $(NF-1), $NF }' \
+       "$T/methods.csv")
+md5=$(awk -F'|' '$2 ~ /kol/ && $3 ~ /^ high $/ { gsub(/^ +| +$/, "", $10); print $10 }' "$T/methods.md")
+[ -z "$bad" ] && [ -n "$csv5" ] && [ "$csv5" = "$md5" ] && t_ok "light by brightness fifth in the CSV and the table ($md5)" ||
+  t_fail "light by brightness fifth" "csv '$csv5', table '$md5'; $bad"
+
 high=$(awk '$7 == "\"high\"" { print $3 }' "$D")
 [ "$high" = "1.00000" ] && t_ok "high is the time reference (ratio 1)" || t_fail "high's ratio" "'$high'"
 

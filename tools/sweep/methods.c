@@ -126,13 +126,14 @@ static void write_csv(FILE *f, const sweep *sw, const mpoint *pt, result *const 
                "median of %d frames after %d warm-up, interleaved\n",
             sw->ew, sw->eh, sw->spp, sw->tw, sw->th, sw->frames, sw->warmup);
     fprintf(f, "view,family,label,changes,time_ms,time_ratio,cloud_rel_rmse,contrast,ref_contrast,ssim,rel_rmse,"
-               "psnr_db\n");
+               "psnr_db,fifth1,fifth2,fifth3,fifth4,fifth5\n");
     for (int s = 0; s < sw->nviews; s++)
         for (int i = 0; i < N_CFG; i++) {
             const result *r = &res[s][i];
-            fprintf(f, "%s,%s,\"%s\",\"%s\",%.3f,%.4f,%.5f,%.4f,%.4f,%.4f,%.5f,%.3f\n", sw->v[s].name,
-                    FAMILY[pt[i].family], pt[i].label, pt[i].c.extra, r->time_ms, r->time_ratio, r->cloud_rel_rmse,
-                    r->contrast, sw->v[s].ref_contrast, r->ssim, r->rel_rmse, r->psnr);
+            fprintf(f, "%s,%s,\"%s\",\"%s\",%.3f,%.4f,%.5f,%.4f,%.4f,%.4f,%.5f,%.3f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                    sw->v[s].name, FAMILY[pt[i].family], pt[i].label, pt[i].c.extra, r->time_ms, r->time_ratio,
+                    r->cloud_rel_rmse, r->contrast, sw->v[s].ref_contrast, r->ssim, r->rel_rmse, r->psnr,
+                    r->fifths[0], r->fifths[1], r->fifths[2], r->fifths[3], r->fifths[4]);
         }
 }
 
@@ -200,7 +201,10 @@ static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *
                "path tracer at %d spp on the pixels the cloud changes (the reference against the sky alone): relative "
                "RMSE of the luminance after a 3x3 box filter of both images (the uniform march's jitter and the path "
                "tracer's noise averaged), contrast p90/p10 of that luminance (the reference's in the heading), SSIM of "
-               "the tone-mapped luminance. Kol's family: the presets and segment counts about them; the uniform march: "
+               "the tone-mapped luminance, and where the light goes: the cloud's pixels in fifths by the reference's "
+               "filtered luminance, darkest first, and in each the image's light over the reference's (1 is right; "
+               "above 1 in the dark fifths and below in the bright ones is a flattened picture, whatever the mean "
+               "error). Kol's family: the presets and segment counts about them; the uniform march: "
                "N steps along the view x M toward the sun, octaves for multiple scattering.\n\n",
             sw->tw, sw->th, sw->frames, sw->warmup, lp ? lp : "(unset)", sw->ew, sw->eh, sw->spp);
     fprintf(f, "## Summary: Kol's time / the uniform march's time at equal error\n\n"
@@ -228,11 +232,13 @@ static void write_md(FILE *f, const sweep *sw, const mpoint *pt, result *const *
         fprintf(f, "\n## %s (the path tracer's contrast %.2f; %d cloud pixels)\n\n", v->name, v->ref_contrast,
                 v->mask_n);
         fprintf(f, "| family | configuration | time (ms) | time / high | rel. RMSE (cloud) | contrast | SSIM | "
-                   "rel. RMSE (image) |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+                   "rel. RMSE (image) | light by brightness fifth, darkest first |\n"
+                   "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | --- |\n");
         for (int i = 0; i < N_CFG; i++) {
             const result *r = &res[s][i];
-            fprintf(f, "| %s | %s | %.1f | %.3f | %.4f | %.2f | %.3f | %.4f |\n", FAMILY[pt[i].family], pt[i].label,
-                    r->time_ms, r->time_ratio, r->cloud_rel_rmse, r->contrast, r->ssim, r->rel_rmse);
+            fprintf(f, "| %s | %s | %.1f | %.3f | %.4f | %.2f | %.3f | %.4f | %.2f %.2f %.2f %.2f %.2f |\n",
+                    FAMILY[pt[i].family], pt[i].label, r->time_ms, r->time_ratio, r->cloud_rel_rmse, r->contrast,
+                    r->ssim, r->rel_rmse, r->fifths[0], r->fifths[1], r->fifths[2], r->fifths[3], r->fifths[4]);
         }
         double w;
         fprintf(f, "\nAt equal error (times / high; the last column Kol's time over the uniform march's):\n\n"

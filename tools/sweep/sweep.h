@@ -24,7 +24,8 @@
 #define SW_MAX_SCENES 16
 #define SW_MAX_VALUES 8
 #define SW_MAX_SETS 40
-#define SW_NKNOBS 17   /* entries of the knob table (knobs.c checks) */
+#define SW_FIFTHS 5    /* result.fifths: the cloud's pixels by the reference's brightness */
+#define SW_NKNOBS 18   /* entries of the knob table (knobs.c checks) */
 #define SW_VALUE_LEN 24
 #define SW_DEFAULT_BASELINE "scenes/cumulus.scene" /* the default scene: its settings are `high` */
 #define SW_MAX_GREEDY 24 /* greedy steps (combinations measured) at most */
@@ -71,6 +72,10 @@ typedef struct result {
     double cloud_rel_rmse; /* RMSE / mean reference after a 3x3 box filter of both (jitter and PT noise averaged) */
     double contrast;       /* p90 / p10 of the 3x3-filtered luminance */
     double ssim;           /* mean SSIM of the tone-mapped 8-bit luminance, 7x7 windows centred on cloud pixels */
+    /* where the light goes: the cloud's pixels in fifths by the reference's filtered luminance, darkest first; in
+     * each, the image's light over the reference's (1: right; > 1 in the darkest fifth and < 1 in the brightest is a
+     * flattened picture, whatever the mean error) */
+    double fifths[SW_FIFTHS];
     int ok;
 } result;
 
@@ -87,6 +92,7 @@ typedef struct view {
     unsigned char *mask;   /* --methods: 1 where the reference differs from the sky alone (the cloud), error size */
     int mask_n;            /* pixels in it */
     double ref_contrast;   /* the reference's contrast over the mask (result.contrast's definition) */
+    double fifth_edge[SW_FIFTHS - 1]; /* the reference's filtered luminance at 20, 40, 60, 80 % of the mask */
 } view;
 
 typedef struct sweep {
