@@ -101,6 +101,10 @@ for p in high medium low; do
 done
 if [ -z "$bad" ]; then t_ok "presets in src/core/presets.c match docs/sweep_presets.txt"
 else t_fail "presets in src/core/presets.c match docs/sweep_presets.txt" "differ:$bad"; fi
+# The sweep never chooses settings that change what is drawn (tools/sweep/knobs.c, knob_preset_eligible): no preset
+# turns the noise off or keeps one interval per pixel (it cuts clouds where a ray leaves and re-enters them).
+cut=$(grep -E '^(high|medium|low):' docs/sweep_presets.txt | grep -E 'quality\.max_intervals=1( |$)|quality\.noise_octaves=off')
+[ -z "$cut" ] && t_ok "no preset cuts clouds or drops the noise" || t_fail "no preset cuts clouds or drops the noise" "$cut"
 
 # The octave model's defaults (src/core/scene_keys.c, printed into README.md's key table, which test_keys.sh keeps in
 # step) are the ones `cumulo-sweep --fit-octaves` chose (docs/ms_octaves_fit.txt).

@@ -228,6 +228,10 @@ int knob_preset_eligible(int k, int j)
         return j == sw_knobs[k].high;
     if (sw_knob_is(k, "quality.noise_octaves"))
         return strcmp(sw_knobs[k].vals[j], "off") != 0;
+    /* one interval per pixel cuts a cloud where the ray leaves it and enters it again: seams across a field's clouds
+     * (scenes/field_noon.scene), content lost rather than precision; the sweep's views did not punish it */
+    if (sw_knob_is(k, "quality.max_intervals"))
+        return atoi(sw_knobs[k].vals[j]) >= 2;
     /* the output resolution is the application's (--size), not a scene key a preset can carry */
     if (sw_knob_is(k, "output.scale"))
         return j == sw_knobs[k].high;
