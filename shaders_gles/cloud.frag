@@ -3,7 +3,7 @@
 // eqs. 3.20-3.22), over the ray's in-cloud intervals in front-to-back order, output premultiplied over the sky.
 //
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
-// NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector), MS_OCTAVES,
+// NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector, 4 diffusion), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
 // inside), BOUNDARY_KNOTS (quality.boundary_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_*
 // (ms_slab.glsl), ENERGY_PASS (the slab model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
@@ -24,7 +24,7 @@
 #endif
 #include "density.glsl"
 #include "sunmap.glsl"
-#if MS_MODE >= 2
+#if MS_MODE == 2 || MS_MODE == 3
 uniform vec2 u_ms_gain;                 // energy closure (pass_energy.c): <= 1, on reflected and transmitted light
 #if ENERGY_PASS
 uniform bool u_budget_view;             // the closure's view from the sun: columns' optical depth and slab angle
@@ -173,6 +173,7 @@ float ext_diffuse(vec3 p)
 }
 #endif
 
+#include "ms_diffusion.glsl"
 // The same for a sample whose (delta-M scaled) optical depth toward the sun is ts.
 vec3 source_from(float ts, vec3 ph0)
 {
@@ -185,7 +186,7 @@ vec3 source_from(float ts, vec3 ph0)
 
 vec3 source(vec3 p, float ke, vec3 ph0)
 {
-    return source_from((sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE, ph0);
+    return source_from((sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE, ph0) + grid_source(p);
 }
 
 #if BOUNDARY_KNOTS
@@ -267,7 +268,7 @@ void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, in
 }
 #endif
 
-#if MS_MODE >= 2
+#if MS_MODE == 2 || MS_MODE == 3
 // Multiple scattering (orders 2..16+) leaving the cloud at p toward the eye, per unit sun irradiance: Bouthors' slab
 // model with Kol's simplification (a fixed blur instead of the collector search). Angles per eqs. 3.56-3.57; the
 // scattering angle is the true one (eq. 3.58's phi_V only enters eq. 3.32 through it). Also returns the opacity
@@ -335,6 +336,7 @@ void main()
     }
     // Start the ray near the cloud: the quadratic's terms grow like the camera distance squared, so fp32 chords
     // from far away lose digits (tests/test_precision.c). t counts from ro.
+    msd_begin(dir);
     float t_base = max(dot(-eye, dir) - u_bound_R, 0.0);
     vec3 ro = eye + dir * t_base;
     float t_end = 3.0e38;  // where the host's surface ends the ray, from ro
@@ -439,7 +441,7 @@ void main()
             ke_prev = ke;
             S_prev = S;
         }
-#if MS_MODE >= 2
+#if MS_MODE == 2 || MS_MODE == 3
         // The interval's multiple scattering, evaluated once at its entry (Kol 3.4.4). C is already the radiance
         // leaving the fitted slab, so it is weighted by the interval's opacity relative to the slab's own along the
         // view (1 for a ray that crosses the cloud as it crosses the slab; small where it grazes a thin edge). Kol
@@ -489,7 +491,7 @@ void main()
     o_color = vec4(L.g, Lms, 0.0);
     return;
 #endif
-#if MS_MODE >= 2
+#if MS_MODE == 2 || MS_MODE == 3
     L += vec3(dot(u_ms_gain, Lms));
 #endif
     o_color = vec4(min((u_sun_irr * L + amb) * u_out_scale, vec3(u_out_max)), alpha);

@@ -31,6 +31,8 @@ $(eval $(call test_program,test_tonemap,tests/core/test_tonemap.c $(CORE),,$(LIB
 $(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIBS)))
 # Generated cumulus layers: coverage, the size distribution's exponent, no overlap, determinism.
 $(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
+# ms.mode = diffusion's solver against closed forms (slab energy and transmission, symmetry, warm start, extremes).
+$(eval $(call test_program,test_ms_diffusion,tests/core/test_ms_diffusion.c $(CORE),,$(LIB_LIBS)))
 # quality.noise_baked's CPU twin against the fractal noise it stands in for.
 $(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE),,$(LIB_LIBS)))
 # The frame budget's controller (quality.target_fps) driven by frame costs of the test's own.
@@ -43,7 +45,7 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 # one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render).
 $(foreach t,render sunmap ms fallback field sky temporal composite impostor,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
-CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh
+CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
 $(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # Issue 7's extremes matrix (it reads the temporal history and impostor images back with GLES itself).

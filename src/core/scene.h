@@ -46,7 +46,7 @@ typedef struct cu_scene_layer {
 
 typedef enum cu_phase_model { CU_PHASE_CORNETTE_SHANKS, CU_PHASE_HG, CU_PHASE_MIE } cu_phase_model;
 typedef enum cu_profile { CU_PROFILE_TAPERED, CU_PROFILE_KOL } cu_profile;
-typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_SLAB, CU_MS_COLLECTOR } cu_ms_mode;
+typedef enum cu_ms_mode { CU_MS_NONE, CU_MS_OCTAVES, CU_MS_SLAB, CU_MS_COLLECTOR, CU_MS_DIFFUSION } cu_ms_mode;
 typedef enum cu_sky_model { CU_SKY_PREETHAM, CU_SKY_CONSTANT } cu_sky_model;
 typedef enum cu_method { CU_METHOD_KOL, CU_METHOD_UNIFORM } cu_method;
 typedef enum cu_shadow_method { CU_SHADOW_PEEL, CU_SHADOW_FRONT, CU_SHADOW_OSM, CU_SHADOW_FOM } cu_shadow_method;
@@ -134,6 +134,7 @@ struct cu_scene {
     int sky_light;            /* the isotropic sky-and-ground light term, 0/1 */
     int ms_iterations;        /* collector search: most steps (Bouthors: most converge within 10) */
     double ms_blur_m;         /* slab model: width of the box the slab maps are averaged over (Kol: a fixed LOD) */
+    int ms_grid;              /* diffusion: cells along the longest side of a cloud's grid (src/core/ms_diffusion.h) */
     int ms_closure;           /* slab model: scale multiple scattering so a cloud sends out no more than it
                                  intercepts (src/gpu/pass_energy.c), 0/1 */
 };

@@ -10,7 +10,7 @@
 
 static const char *const phase_names[] = {"cornette-shanks", "hg", "mie", NULL};
 static const char *const profile_names[] = {"tapered", "kol", NULL};
-static const char *const ms_names[] = {"none", "octaves", "slab", "collector", NULL};
+static const char *const ms_names[] = {"none", "octaves", "slab", "collector", "diffusion", NULL};
 static const char *const sky_names[] = {"preetham", "constant", NULL};
 static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
@@ -198,7 +198,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("light", "fom_coefficients", 1, "8", 1, 16, 0, "", "shadow = fom: Fourier terms", S(fom_coefficients)),
     ENUM("ms", "mode", ms_names, "slab",
          "multiple scattering: slab (Bouthors' model, Kol's fixed blur), collector (Bouthors' iterative collector "
-         "search), octaves (Wrenninge) or none",
+         "search), octaves (Wrenninge), diffusion (flux-limited diffusion solved on a grid over each cloud) or none",
          S(ms_mode)),
     /* Wrenninge's a, b, c in [0, 1]: the octaves' factors a^o, b^o, c^o shrink, so their sums stay <= octaves */
     /* the defaults: `make fit-octaves` (docs/ms_octaves_fit.txt; tests/app/test_cli.sh checks), not the textbook's */
@@ -217,6 +217,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "mode = slab: width over which the slab maps are averaged around a point (Kol's fixed LOD)", S(ms_blur_m)),
     INT("ms", "iterations", 1, "10", 1, 32, 0, "", "mode = collector: most search steps (Bouthors eqs. 3.59-3.63)",
         S(ms_iterations)),
+    INT("ms", "grid", 1, "32", 8, 96, 0, "", "mode = diffusion: cells along the longest side of a cloud's grid",
+        S(ms_grid)),
     BOOL("ms", "closure", "on",
          "slab and collector modes: scale multiple scattering so the clouds send out no more light than they "
          "intercept (the energy closure)",

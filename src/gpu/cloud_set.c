@@ -84,6 +84,8 @@ void cu_cloud_slot_free_maps(cu_cloud_slot *sl, const cu_gl *gl)
 
 void cu_cloud_set_free(cu_cloud_set *cs, const cu_gl *gl)
 {
+    for (int i = 0; i < cs->n; i++)
+        cu_pass_msd_free(&cs->slot[i].msd, gl);
     for (int i = 0; gl && i < cs->n; i++) {
         cu_cloud_slot *sl = &cs->slot[i];
         if (sl->vao)

@@ -5,6 +5,7 @@
 #define CU_CLOUD_SET_H
 #include "gpu_scene.h"
 #include "pass_impostor.h"
+#include "pass_msd.h"
 #include "target.h"
 
 typedef struct cu_cloud_slot {
@@ -34,6 +35,7 @@ typedef struct cu_cloud_slot {
     cu_target shadow;          /* other clouds' optical depth over its sun-map square (pass_shadow.c) */
     int has_shadow;            /* this frame: some other cloud shades it, and shadow holds their optical depth */
     uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
+    cu_cloud_msd msd;          /* ms.mode = diffusion: its diffusion grid (pass_msd.c) */
     cu_impostor imp;           /* quality.impostor_pixels: its image, when it is small on screen (frame_impostor.c) */
 } cu_cloud_slot;
 

@@ -20,6 +20,7 @@ void cu_frame_bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
     ctx->hull_vao = sl->vao;
     ctx->sun = sl->sun;
     ctx->slab = sl->slab;
+    cu_pass_msd_bind(ctx, &sl->msd);
     ctx->ke_scale = sl->factor;
     ctx->sun_ext = sl->has_shadow ? sl->shadow.tex[0] : r->pass_shadow.zero_tex;
     ctx->sun_size = sl->map_size > 0 ? sl->map_size : r->scene.sun_map_size;
@@ -94,6 +95,7 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *
         }
         (*budget)--;
     }
+    int resample = boiled || !sl->maps_valid; /* the grid's density: a new look, or the noise boiled on */
     if (boiled)
         sl->zenith_valid = 0;
     sl->maps_boil = sl->boil;
@@ -109,8 +111,9 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *
     if (!sl->zenith_valid)
         cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
     sl->zenith_valid = 1;
+    int rc = ctx->ms_mode == CU_MS_DIFFUSION && cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, err);
     sl->factor = f;
-    return 0;
+    return rc;
 }
 
 /* The frame's view and projection: the host's matrices, or the scene's [camera] through exactly the float matrices

@@ -5,7 +5,7 @@
 #include "gl.h"
 
 /* Texture units cumulo binds (gpu_scene.h's CU_UNIT_*, the host depth unit included). */
-#define CU_GLSTATE_UNITS 14
+#define CU_GLSTATE_UNITS 15
 
 typedef struct cu_glstate {
     GLint draw_fbo, read_fbo, program, vao, array_buffer, renderbuffer, active_texture;

@@ -17,7 +17,8 @@ struct cu_collector;
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
        CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the
        ground's in the sky pass */, CU_UNIT_SKY = 12 /* the sky pass's Perez tables */,
-       CU_UNIT_CLOUDS = 13 /* the cloud image the sky pass composites (pass_sky.h: cu_pass_sky_draw_over) */ };
+       CU_UNIT_CLOUDS = 13 /* the cloud image the sky pass composites (pass_sky.h: cu_pass_sky_draw_over) */,
+       CU_UNIT_MSD = 14 /* the cloud's diffusion grid (ms.mode = diffusion, pass_msd.h) */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
@@ -72,6 +73,7 @@ typedef struct cu_gpu_scene {
     int shadow;              /* the sun-map method in use (the scene's, or front when the context cannot) */
     int ms_mode;             /* the multiple-scattering mode in use */
     double peak_f[3];        /* weight of the chopped Mie peak per channel (0: analytic phase) */
+    double phase_asym;       /* mean cosine of the phase function without its peak (green; ms.mode = diffusion) */
     double white[3];         /* the tone mapper's white balance (sky.h) */
 
     GLuint noise_tex, phase_tex;
@@ -100,6 +102,8 @@ typedef struct cu_gpu_scene {
     GLuint ground_tau;       /* the ground's shadow map, 0 when none; its centre (x, z) and side (m) */
     vec3 ground_map;
     cu_slab_maps slab;       /* published by the slab pass */
+    GLuint msd_tex;          /* the cloud's diffusion grid (pass_msd.c), its cloud-local corner and extent (m) */
+    vec3 msd_lo, msd_size;
     double ms_gain[2];       /* published by the energy closure: gains on reflected, transmitted multiple scattering */
     GLenum hdr_format;       /* published by the tone map: the HDR target's format */
 } cu_gpu_scene;

@@ -24,6 +24,13 @@ int cu_pass_slab_load(cu_pass_slab *p, const cu_gpu_scene *ctx, const char *dir,
         *ms_mode = CU_MS_OCTAVES;
         return 0;
     }
+    if (ctx->scene->method == CU_METHOD_UNIFORM && *ms_mode == CU_MS_DIFFUSION) {
+        /* the grids are solved with the sun maps, which a uniform march does not make */
+        cu_gpu_log(ctx, CU_LOG_INFO, "quality.method = uniform: multiple scattering by octaves (ms.mode = diffusion "
+                                     "works with Kol's maps)");
+        *ms_mode = CU_MS_OCTAVES;
+        return 0;
+    }
     if (!slab_on(*ms_mode))
         return 0;
     if (!ctx->half_rt) {

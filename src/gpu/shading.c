@@ -14,7 +14,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
     LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear); LOC(host_scale);
-    LOC(shadow_g); LOC(px_map); LOC(motion);
+    LOC(shadow_g); LOC(px_map); LOC(motion); LOC(msd_lo); LOC(msd_size); LOC(msd_k);
 #undef LOC
     cu_gpu_unit(gl, p, "u_sun_ext", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, p, "u_host_depth", CU_UNIT_HOST_DEPTH);
@@ -25,6 +25,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     cu_gpu_unit(gl, p, "u_sky_a", CU_UNIT_SLAB + 3);
     cu_gpu_unit(gl, p, "u_sky_n", CU_UNIT_SLAB + 4);
     cu_gpu_unit(gl, p, "u_coll", CU_UNIT_SLAB + 5);
+    cu_gpu_unit(gl, p, "u_msd", CU_UNIT_MSD);
 }
 
 static void set_array(const cu_gl *gl, GLint loc, const double *x, int n)
@@ -117,6 +118,9 @@ void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_loc
     gl->Uniform1f(l->ms_g, (float)s->phase_g);
     gl->Uniform3f(l->peak_f, (float)ctx->peak_f[0], (float)ctx->peak_f[1], (float)ctx->peak_f[2]);
     gl->Uniform2f(l->ms_gain, (float)ctx->ms_gain[0], (float)ctx->ms_gain[1]);
+    gl->Uniform3f(l->msd_lo, (float)ctx->msd_lo.x, (float)ctx->msd_lo.y, (float)ctx->msd_lo.z);
+    gl->Uniform3f(l->msd_size, (float)ctx->msd_size.x, (float)ctx->msd_size.y, (float)ctx->msd_size.z);
+    gl->Uniform2f(l->msd_k, (float)((1.0 - ctx->peak_f[1]) / (4.0 * CU_PI)), (float)(3.0 * ctx->phase_asym));
     gl->Uniform1f(l->shadow_g, (float)cu_shadow_g(ctx));
     float os[3];
     cu_out_scale(ctx, os);
@@ -137,6 +141,10 @@ void cu_shading_bind(const cu_gpu_scene *ctx)
     gl->BindTexture(GL_TEXTURE_2D, ctx->sun.tau);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
     gl->BindTexture(GL_TEXTURE_2D, ctx->sun_ext);
+    if (ctx->ms_mode == CU_MS_DIFFUSION) {
+        gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_MSD);
+        gl->BindTexture(GL_TEXTURE_3D, ctx->msd_tex);
+    }
     const cu_slab_maps *s = &ctx->slab;
     if (s->tab) {
         GLuint t[6] = {s->tab, s->a[0], s->n[0], s->a[1], s->n[1], s->coll};

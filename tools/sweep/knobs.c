@@ -37,7 +37,7 @@ static const knob_spec SPECS[] = {
     {"light.sun_intervals", KF_INT, F(sun_intervals), 3, {"1", "2", "3"}, {0}},
     {"light.sun_samples", KF_INT, F(sun_samples), 4, {"8", "16", "32", "64"}, {0}},
     {"light.sun_filter", KF_ENUM, F(sun_filter), 2, {"nearest", "bilinear"}, {0}},
-    {"ms.mode", KF_ENUM, F(ms_mode), 4, {"none", "octaves", "slab", "collector"}, {1, 0, 1, 0}},
+    {"ms.mode", KF_ENUM, F(ms_mode), 5, {"none", "octaves", "slab", "collector", "diffusion"}, {1, 0, 1, 0, 0}},
     {"ms.blur", KF_DOUBLE, F(ms_blur_m), 3, {"100", "200", "400"}, {0}},
     {"ms.sky_light", KF_ENUM, F(sky_light), 2, {"off", "on"}, {0}},
     {"ms.closure", KF_ENUM, F(ms_closure), 2, {"off", "on"}, {0}},

@@ -36,6 +36,11 @@ static const struct {
     {CU_PRESET_MEDIUM, "light.sun_filter=nearest", "medium, nearest sun map", 0},
     {CU_PRESET_MEDIUM, "quality.segments=2;light.sun_filter=nearest", "medium, 2 segments, nearest sun map", 0},
     {CU_PRESET_LOW, "light.sun_filter=nearest", "low, nearest sun map", 0},
+    /* multiple scattering from each cloud's diffusion solution (ms.mode = diffusion) in place of the preset's */
+    {CU_PRESET_HIGH, "ms.mode=diffusion", "high, diffusion", 0},
+    {CU_PRESET_MEDIUM, "ms.mode=diffusion", "medium, diffusion", 0},
+    {CU_PRESET_MEDIUM, "ms.mode=diffusion;quality.segments=2", "medium, diffusion, 2 segments", 0},
+    {CU_PRESET_LOW, "ms.mode=diffusion", "low, diffusion", 0},
     /* the slab model at its cheapest: few segments, small maps, a coarse hull */
     {CU_PRESET_HIGH, "quality.segments=2;quality.sun_map_size=64;quality.hull_tessellation=6", "high, 2 segments, "
      "64^2 maps, hull 6", 0},

@@ -1,0 +1,323 @@
+/* src/core/ms_diffusion.c: flux-limited diffusion of the sunlight a cloud scatters (see ms_diffusion.h).
+ *
+ * The diffuse radiance in P1 form, L(w) = (phi + 3 F.w) / 4pi, in the delta-M medium (extinction (1 - f) k_e, all
+ * of it scattering, asymmetry g of the chopped phase function), with the sunbeam's first scattering as the source
+ * Q = (1 - f) k_e T' (T' its delta-M transmittance to the point, per unit irradiance). The moments give
+ *     div F = Q,   F = -D grad phi + G,   G = 3 D g Q w_s,   D = 1 / (3 s_tr),   s_tr = (1 - f)(1 - g) k_e,
+ * where w_s is the beam's direction: G carries the forward push of the first scattering. Plain diffusion spreads
+ * light through thin cloud and empty space infinitely fast; Wilson's sum limiter D = 1 / (3 s_tr + |grad phi| /
+ * phi) caps the flux at c phi, and the push is capped at phi the same way (|F| <= phi: unlimited, it drains the far
+ * side of a cloud below zero). Finite volumes on the grid's cells, the coefficient at a face the harmonic mean of its
+ * cells', Marshak's condition where the cloud meets empty space. Both caps depend on the fluence they shape, so the
+ * solve is a Picard iteration: the coefficients are taken from the fluence so far (damped), then the linear problem
+ * they make is relaxed (over-relaxed Gauss-Seidel) until it settles, and again, until new coefficients change
+ * nothing. Whatever the coefficients do, the last relaxation is of a fixed linear problem, so the answer is settled
+ * (a few cells at the edge of a wispy cloud can make the coefficients swing; the number of rounds is bounded). */
+#include "ms_diffusion.h"
+#include <stdlib.h>
+#include <string.h>
+
+#define SOR 1.6
+#define ROUNDS 12       /* Picard rounds at most (the coefficients from the fluence, then the linear problem) */
+#define ROUND_SWEEPS 40 /* sweeps of the linear problem in a round before the coefficients are taken again */
+#define SETTLED 10      /* a round that settles within this many sweeps ends the solve */
+
+int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err)
+{
+    memset(g, 0, sizeof *g);
+    if (cells < CU_MSD_MIN_CELLS || cells > CU_MSD_MAX_CELLS)
+        return cu_fail(err, "ms.grid: %d cells; between %d and %d", cells, CU_MSD_MIN_CELLS, CU_MSD_MAX_CELLS);
+    double lo[3] = {cl->bounds_min.x, cl->bounds_min.y, cl->bounds_min.z};
+    double hi[3] = {cl->bounds_max.x, cl->bounds_max.y, cl->bounds_max.z};
+    double longest = 0.0, inner = cells - 2 * CU_MSD_MARGIN;
+    for (int a = 0; a < 3; a++)
+        longest = fmax(longest, hi[a] - lo[a]);
+    if (!(longest > 0.0) || !isfinite(longest))
+        longest = 1.0; /* an empty cloud: a grid of nothing, solved to zero */
+    for (int a = 0; a < 3; a++) {
+        /* cubic cells where the cloud is round; a flat one keeps a quarter of the cells across its thickness, so its
+         * light can fall off from top to base (one cell across a layer would hold one fluence) */
+        double e = fmax(hi[a] - lo[a], 1e-3 * longest);
+        int n = (int)ceil(e / (longest / inner) - 1e-9);
+        if (n < (int)inner / 4)
+            n = (int)inner / 4;
+        g->h[a] = e / n;
+        g->n[a] = n + 2 * CU_MSD_MARGIN;
+        lo[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * g->n[a] * g->h[a];
+    }
+    g->lo = v3(lo[0], lo[1], lo[2]);
+    size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
+    g->ke = calloc(count, sizeof *g->ke);
+    g->q = calloc(count, sizeof *g->q);
+    g->push = calloc(count, sizeof *g->push);
+    g->phi = calloc(count, sizeof *g->phi);
+    g->d = calloc(count, sizeof *g->d);
+    g->out = calloc(4 * count, sizeof *g->out);
+    if (!g->ke || !g->q || !g->push || !g->phi || !g->d || !g->out) {
+        cu_msd_free(g);
+        return cu_fail(err, "ms.grid: out of memory for %dx%dx%d cells", g->n[0], g->n[1], g->n[2]);
+    }
+    return 0;
+}
+
+void cu_msd_free(cu_msd *g)
+{
+    free(g->ke);
+    free(g->q);
+    free(g->push);
+    free(g->phi);
+    free(g->d);
+    free(g->out);
+    memset(g, 0, sizeof *g);
+}
+
+/* The centre of cell (i, j, k), cloud-local. */
+static vec3 centre(const cu_msd *g, int i, int j, int k)
+{
+    return v3(g->lo.x + (i + 0.5) * g->h[0], g->lo.y + (j + 0.5) * g->h[1], g->lo.z + (k + 0.5) * g->h[2]);
+}
+
+void cu_msd_sample(cu_msd *g, const cu_cloud *cl)
+{
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                vec3 c = centre(g, i, j, k);
+                double sum = 0.0;
+                for (int s = 0; s < 8; s++) /* the mean of 8 samples at the cell's quarter points */
+                    sum += cu_cloud_extinction(cl, v3(c.x + ((s & 1) - 0.5) * 0.5 * g->h[0],
+                                                      c.y + ((s >> 1 & 1) - 0.5) * 0.5 * g->h[1],
+                                                      c.z + ((s >> 2) - 0.5) * 0.5 * g->h[2]));
+                g->ke[cu_msd_at(g, i, j, k)] = (float)(sum / 8.0);
+            }
+}
+
+/* Extinction at a cloud-local point: its cell's (the cells hold means, so the beam crossing them sees exactly the
+ * optical depth they hold; interpolating would spread each cell's density half a cell outward and dim the beam
+ * before it reaches the cloud). Zero outside the grid. */
+static double ke_at(const cu_msd *g, vec3 p)
+{
+    int i = (int)floor((p.x - g->lo.x) / g->h[0]), j = (int)floor((p.y - g->lo.y) / g->h[1]),
+        k = (int)floor((p.z - g->lo.z) / g->h[2]);
+    if (i < 0 || j < 0 || k < 0 || i >= g->n[0] || j >= g->n[1] || k >= g->n[2])
+        return 0.0;
+    return g->ke[cu_msd_at(g, i, j, k)];
+}
+
+/* Whether cell c holds cloud: an optical depth across it (its mean side) of at least CU_MSD_THIN. A wisp of less
+ * scatters under a tenth of the light through it, most of which leaves at once; solved, its fluence hangs on a tiny
+ * source and a huge coefficient, and the limiter's feedback makes it swing from sweep to sweep (at 0.01 the solve
+ * never settles). */
+static int holds(const cu_msd *g, int c)
+{
+    return g->ke[c] * cbrt(g->h[0] * g->h[1] * g->h[2]) >= CU_MSD_THIN;
+}
+
+/* The first scattering, per cell: the power the sunbeam loses in it over its volume. The beam reaches the cell with
+ * its delta-M transmittance T' where it enters (marched from the grid's edge toward the sun in steps of half the
+ * smallest cell side, midpoint rule) and crosses a mean chord l (the cell's volume over its cross-section along the
+ * beam), so it loses T' (1 - e^-(1-f) k_e l) over that cross-section, T' (1 - e^-(1-f) k_e l) / l per volume. A cell
+ * is optically thick (a cumulus's mean free path is a few metres, a cell tens), so the source at the cell's centre,
+ * (1 - f) k_e e^-tau, would lose most of the light. */
+static void first_scattering(cu_msd *g, vec3 sun, double f)
+{
+    double step = 0.5 * fmin(g->h[0], fmin(g->h[1], g->h[2]));
+    vec3 size = v3(g->n[0] * g->h[0], g->n[1] * g->h[1], g->n[2] * g->h[2]);
+    double reach = v3_len(size);
+    double chord = 1.0 / (fabs(sun.x) / g->h[0] + fabs(sun.y) / g->h[1] + fabs(sun.z) / g->h[2]);
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                g->q[c] = 0.0f;
+                if (g->ke[c] <= 0.0f)
+                    continue;
+                vec3 p = v3_add(centre(g, i, j, k), v3_scale(sun, 0.5 * chord));
+                double tau = 0.0;
+                for (double s = 0.5 * step; s < reach; s += step) {
+                    vec3 x = v3_sub(v3_add(p, v3_scale(sun, s)), g->lo);
+                    if (x.x < 0.0 || x.y < 0.0 || x.z < 0.0 || x.x > size.x || x.y > size.y || x.z > size.z)
+                        break;
+                    tau += step * ke_at(g, v3_add(x, g->lo));
+                }
+                g->q[c] = (float)(exp(-(1.0 - f) * tau) * (1.0 - exp(-(1.0 - f) * g->ke[c] * chord)) / chord);
+            }
+}
+
+/* Whether cell (i, j, k) holds cloud (cells of empty space, and beyond the grid, do not: the cloud's surface). */
+static int inside(const cu_msd *g, int i, int j, int k)
+{
+    return i >= 0 && j >= 0 && k >= 0 && i < g->n[0] && j < g->n[1] && k < g->n[2] && holds(g, cu_msd_at(g, i, j, k));
+}
+
+static const int OFF[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+/* Marshak's condition at a face to empty space: no diffuse light comes in, so the flux out is phi_s / 2 with phi_s
+ * the fluence at the face, which the half-cell gradient ties to the cell's: with a = 2 D / h (h the side across the
+ * face), phi_s = (a phi + G.n) / (a + 1/2) and the flux out (a phi + G.n) / (2a + 1). */
+static double surface_phi(double d, double h, double phi, double gn)
+{
+    double a = 2.0 * d / h;
+    return (a * phi + gn) / (a + 0.5);
+}
+
+static vec3 gradient(const cu_msd *g, int i, int j, int k)
+{
+    int c = cu_msd_at(g, i, j, k);
+    double v[3];
+    for (int a = 0; a < 3; a++) {
+        double side[2];
+        for (int e = 0; e < 2; e++) {
+            const int *o = OFF[2 * a + e];
+            side[e] = inside(g, i + o[0], j + o[1], k + o[2]) ? g->phi[cu_msd_at(g, i + o[0], j + o[1], k + o[2])]
+                                                              : surface_phi(g->d[c], g->h[a], g->phi[c], 0.0);
+        }
+        v[a] = (side[0] - side[1]) / (2.0 * g->h[a]);
+    }
+    return v3(v[0], v[1], v[2]);
+}
+
+/* The coefficients from the fluence so far, half way from the last ones (damped: they feed back on the fluence they
+ * shape): Wilson's limited D, at most two cells (no light yet: the first round), and the push 3 |g| D Q capped at
+ * phi. */
+static void coefficients(cu_msd *g, double s_tr_per_ke, double g3)
+{
+    double most = 2.0 * fmax(g->h[0], fmax(g->h[1], g->h[2]));
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                if (!holds(g, c)) {
+                    g->d[c] = g->push[c] = 0.0f;
+                    continue;
+                }
+                double inv = 3.0 * s_tr_per_ke * g->ke[c];
+                if (g->phi[c] > 0.0f)
+                    inv += v3_len(gradient(g, i, j, k)) / g->phi[c];
+                double d = inv > 1.0 / most ? 1.0 / inv : most;
+                int first = !(g->d[c] > 0.0f);
+                g->d[c] = (float)(first ? d : 0.5 * (g->d[c] + d));
+                double p = fmin(g3 * g->d[c] * g->q[c], g->phi[c]);
+                g->push[c] = (float)(first ? p : 0.5 * (g->push[c] + p));
+            }
+}
+
+/* One over-relaxed Gauss-Seidel sweep over the cloud's cells; returns the sum of the changes. u is the direction the
+ * push goes (the beam's, or against it for g < 0): G = u push at a cell. Per unit volume, a face across side h
+ * carries -D_f (phi_j - phi_i) / h^2 + G_f.n / h between two cloud cells (D_f the harmonic mean, G_f the mean), and
+ * (a phi + G.n) / ((2a + 1) h) out of the cloud (Marshak, surface_phi). */
+static double sweep(cu_msd *g, vec3 u)
+{
+    double sum = 0.0, uv[3] = {u.x, u.y, u.z};
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                if (!holds(g, c))
+                    continue;
+                double di = g->d[c], diag = 0.0, rhs = g->q[c];
+                for (int f = 0; f < 6; f++) {
+                    int ax = f >> 1, sgn = OFF[f][ax], ii = i + OFF[f][0], jj = j + OFF[f][1], kk = k + OFF[f][2];
+                    double h = g->h[ax], gi = uv[ax] * g->push[c] * sgn;
+                    if (inside(g, ii, jj, kk)) {
+                        int cj = cu_msd_at(g, ii, jj, kk);
+                        double dj = g->d[cj], df = 2.0 * di * dj / (di + dj);
+                        diag += df / (h * h);
+                        rhs += df * g->phi[cj] / (h * h) - 0.5 * (gi + uv[ax] * g->push[cj] * sgn) / h;
+                    } else {
+                        double a2 = 2.0 * di / h;
+                        diag += a2 / ((2.0 * a2 + 1.0) * h);
+                        rhs -= gi / ((2.0 * a2 + 1.0) * h);
+                    }
+                }
+                double now = g->phi[c] + SOR * (rhs / diag - g->phi[c]);
+                if (!(now > 0.0))
+                    now = 0.0;
+                sum += fabs(now - g->phi[c]);
+                g->phi[c] = (float)now;
+            }
+    return sum;
+}
+
+/* Cells of empty space next to the cloud take the mean of their cloud neighbours' fluence and flux at the shared
+ * faces, so the shader's trilinear reads near the surface blend toward the surface's light, not toward zero. */
+static void surface_values(cu_msd *g)
+{
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                if (holds(g, c))
+                    continue;
+                double sum[4] = {0, 0, 0, 0};
+                int m = 0;
+                for (int f = 0; f < 6; f++) {
+                    int ii = i + OFF[f][0], jj = j + OFF[f][1], kk = k + OFF[f][2];
+                    if (!inside(g, ii, jj, kk))
+                        continue;
+                    int cj = cu_msd_at(g, ii, jj, kk);
+                    sum[0] += surface_phi(g->d[cj], g->h[f >> 1], g->phi[cj], 0.0);
+                    for (int e = 1; e < 4; e++)
+                        sum[e] += g->out[4 * cj + e];
+                    m++;
+                }
+                for (int e = 0; e < 4 && m > 0; e++)
+                    g->out[4 * c + e] = (float)(sum[e] / m);
+
+            }
+}
+
+/* Relaxes the linear problem of the present coefficients until a sweep changes at most tol of the summed fluence, or
+ * `most` sweeps; returns the sweeps taken. */
+static int relax(cu_msd *g, vec3 u, int most, double tol)
+{
+    size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
+    for (int s = 1; s <= most; s++) {
+        double change = sweep(g, u), total = 0.0;
+        for (size_t c = 0; c < count; c++)
+            total += g->phi[c];
+        g->change = total > 0.0 ? change / total : 0.0;
+        if (g->change <= tol)
+            return s;
+    }
+    return most;
+}
+
+void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+{
+    if (!(f >= 0.0 && f < 1.0))
+        f = 0.0;
+    if (!(asym > -1.0 && asym < 1.0))
+        asym = 0.0;
+    first_scattering(g, sun_dir, f);
+    double s_tr_per_ke = (1.0 - f) * (1.0 - asym), g3 = 3.0 * fabs(asym);
+    vec3 u = v3_scale(sun_dir, asym < 0.0 ? 1.0 : -1.0); /* the beam travels away from the sun */
+    g->sweeps = 0;
+    g->change = 0.0;
+    /* Picard rounds: new coefficients, then relax; done when a round's relaxation settles within SETTLED sweeps (the
+     * new coefficients hardly moved the fluence), or at the last round, whose relaxation runs to the end of the
+     * budget */
+    for (int round = 0; round < ROUNDS && g->sweeps < max_sweeps; round++) {
+        coefficients(g, s_tr_per_ke, g3);
+        int last = round == ROUNDS - 1, left = max_sweeps - g->sweeps;
+        int n = relax(g, u, last ? left : (left < ROUND_SWEEPS ? left : ROUND_SWEEPS), tol);
+        g->sweeps += n;
+        if (n <= SETTLED && g->change <= tol)
+            break;
+    }
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                float *o = &g->out[4 * c];
+                o[0] = o[1] = o[2] = o[3] = 0.0f;
+                if (!holds(g, c))
+                    continue;
+                vec3 F = v3_add(v3_scale(gradient(g, i, j, k), -g->d[c]), v3_scale(u, g->push[c]));
+                o[0] = g->phi[c];
+                o[1] = (float)F.x;
+                o[2] = (float)F.y;
+                o[3] = (float)F.z;
+            }
+    surface_values(g);
+}

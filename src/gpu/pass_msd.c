@@ -1,0 +1,69 @@
+/* src/gpu/pass_msd.c: a cloud's diffusion grid, solved and uploaded (see pass_msd.h). */
+#include "pass_msd.h"
+#include <math.h>
+
+/* Relaxation sweeps at most, and the change in a sweep (of the summed fluence) at which a solve stops: about a
+ * thousandth of the fluence left to converge at the rate these grids relax. */
+#define MSD_MOST_SWEEPS 1000
+#define MSD_TOL 1e-5
+
+static void upload(const cu_gpu_scene *ctx, cu_cloud_msd *m)
+{
+    const cu_gl *gl = ctx->gl;
+    if (!m->tex) {
+        gl->GenTextures(1, &m->tex);
+        gl->BindTexture(GL_TEXTURE_3D, m->tex);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        gl->TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    }
+    /* half floats from floats: GLES 3.0 converts, and filters half floats without an extension */
+    gl->BindTexture(GL_TEXTURE_3D, m->tex);
+    gl->TexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, m->grid.n[0], m->grid.n[1], m->grid.n[2], 0, GL_RGBA, GL_FLOAT,
+                   m->grid.out);
+    gl->BindTexture(GL_TEXTURE_3D, 0);
+}
+
+int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
+                       cu_error *err)
+{
+    if (!m->grid.ke) {
+        if (cu_msd_init(&m->grid, cl, ctx->scene->ms_grid, err))
+            return 1;
+        resample = 1;
+    }
+    if (resample || !m->sampled) {
+        cu_msd_sample(&m->grid, cl);
+        m->sampled = 1;
+        m->solved = 0;
+    }
+    if (m->solved && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
+        return 0;
+    cu_msd_solve(&m->grid, sun, ctx->peak_f[1], ctx->phase_asym, MSD_MOST_SWEEPS, MSD_TOL);
+    m->sun = sun;
+    m->solved = 1;
+    cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: %dx%dx%d cells of %.0fx%.0fx%.0f m, %d sweeps, last change %.1e",
+               m->grid.n[0], m->grid.n[1], m->grid.n[2], m->grid.h[0], m->grid.h[1], m->grid.h[2], m->grid.sweeps,
+               m->grid.change);
+    upload(ctx, m);
+    return 0;
+}
+
+void cu_pass_msd_bind(cu_gpu_scene *ctx, const cu_cloud_msd *m)
+{
+    const cu_msd *g = &m->grid;
+    ctx->msd_tex = m->tex;
+    ctx->msd_lo = g->lo;
+    ctx->msd_size = v3(g->n[0] * g->h[0], g->n[1] * g->h[1], g->n[2] * g->h[2]);
+}
+
+void cu_pass_msd_free(cu_cloud_msd *m, const cu_gl *gl)
+{
+    if (m->tex && gl) /* no GL: the context is gone, and its textures with it */
+        gl->DeleteTextures(1, &m->tex);
+    cu_msd_free(&m->grid);
+    m->tex = 0;
+    m->sampled = m->solved = 0;
+}
