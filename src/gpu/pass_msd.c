@@ -1,6 +1,7 @@
 /* src/gpu/pass_msd.c: a cloud's diffusion grid, solved and uploaded (see pass_msd.h). */
 #include "pass_msd.h"
 #include <math.h>
+#include <time.h>
 
 /* Relaxation sweeps at most, and the change in a sweep (of the summed fluence) at which a solve stops: about a
  * thousandth of the fluence left to converge at the rate these grids relax. */
@@ -41,12 +42,15 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
     }
     if (m->solved && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
         return 0;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     cu_msd_solve(&m->grid, sun, ctx->peak_f[1], ctx->phase_asym, MSD_MOST_SWEEPS, MSD_TOL);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     m->sun = sun;
     m->solved = 1;
-    cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: %dx%dx%d cells of %.0fx%.0fx%.0f m, %d sweeps, last change %.1e",
-               m->grid.n[0], m->grid.n[1], m->grid.n[2], m->grid.h[0], m->grid.h[1], m->grid.h[2], m->grid.sweeps,
-               m->grid.change);
+    cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: %dx%dx%d cells of %.0fx%.0fx%.0f m, %d sweeps, last change %.1e, "
+               "%.0f ms on the CPU", m->grid.n[0], m->grid.n[1], m->grid.n[2], m->grid.h[0], m->grid.h[1], m->grid.h[2],
+               m->grid.sweeps, m->grid.change, 1e3 * (t1.tv_sec - t0.tv_sec) + 1e-6 * (t1.tv_nsec - t0.tv_nsec));
     upload(ctx, m);
     return 0;
 }
