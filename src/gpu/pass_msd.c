@@ -11,6 +11,7 @@
 static void upload(const cu_gpu_scene *ctx, cu_cloud_msd *m)
 {
     const cu_gl *gl = ctx->gl;
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_MSD); /* its own unit: unit 0 holds the noise, also a 3D texture */
     if (!m->tex) {
         gl->GenTextures(1, &m->tex);
         gl->BindTexture(GL_TEXTURE_3D, m->tex);
@@ -25,6 +26,7 @@ static void upload(const cu_gpu_scene *ctx, cu_cloud_msd *m)
     gl->TexImage3D(GL_TEXTURE_3D, 0, GL_RGBA16F, m->grid.n[0], m->grid.n[1], m->grid.n[2], 0, GL_RGBA, GL_FLOAT,
                    m->grid.out);
     gl->BindTexture(GL_TEXTURE_3D, 0);
+    gl->ActiveTexture(GL_TEXTURE0);
 }
 
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
