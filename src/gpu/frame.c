@@ -87,8 +87,9 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *
     int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
     int urgent = !sl->maps_valid || !sl->zenith_valid || c < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
     if (!urgent) {
-        if (!boiled && !crept)
-            return 0;
+        if (!boiled && !crept) /* the maps are up to date; a grid a busier frame left behind catches up */
+            return ctx->ms_mode == CU_MS_DIFFUSION &&
+                   cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, 0, &r->msd_allowance, err);
         if (*budget <= 0) {
             r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
             return 0;
@@ -111,7 +112,9 @@ static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *
     if (!sl->zenith_valid)
         cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
     sl->zenith_valid = 1;
-    int rc = ctx->ms_mode == CU_MS_DIFFUSION && cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, err);
+    int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
+             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, urgent ? NULL : &r->msd_allowance,
+                                err);
     sl->factor = f;
     return rc;
 }
@@ -290,6 +293,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         return 1;
     /* Everything seen from the sun first (it draws into the maps' own targets). */
     int budget = 4;
+    r->msd_allowance = 1;
     for (int j = visible - 1; j >= 0; j--)
         if (cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
             return 1;

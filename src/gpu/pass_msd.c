@@ -30,20 +30,26 @@ static void upload(const cu_gpu_scene *ctx, cu_cloud_msd *m)
 }
 
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
-                       cu_error *err)
+                       int *allowance, cu_error *err)
 {
     if (!m->grid.ke) {
         if (cu_msd_init(&m->grid, cl, ctx->scene->ms_grid, err))
             return 1;
         resample = 1;
     }
-    if (resample || !m->sampled) {
+    m->resample |= resample || !m->sampled;
+    if (m->solved && !m->resample && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
+        return 0;
+    if (m->solved && allowance) {
+        if (*allowance <= 0)
+            return 0; /* a later frame's: until then the cloud keeps the light it has, at most a few tenths off */
+        (*allowance)--;
+    }
+    if (m->resample) {
         cu_msd_sample(&m->grid, cl);
         m->sampled = 1;
-        m->solved = 0;
+        m->resample = 0;
     }
-    if (m->solved && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
-        return 0;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     cu_msd_solve(&m->grid, sun, ctx->peak_f[1], ctx->phase_asym, MSD_MOST_SWEEPS, MSD_TOL);
@@ -71,5 +77,5 @@ void cu_pass_msd_free(cu_cloud_msd *m, const cu_gl *gl)
         gl->DeleteTextures(1, &m->tex);
     cu_msd_free(&m->grid);
     m->tex = 0;
-    m->sampled = m->solved = 0;
+    m->sampled = m->resample = m->solved = 0;
 }
