@@ -45,6 +45,7 @@ int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err)
         g->n[a] = n + 2 * CU_MSD_MARGIN;
         lo[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * g->n[a] * g->h[a];
     }
+    g->side = cbrt(g->h[0] * g->h[1] * g->h[2]);
     g->lo = v3(lo[0], lo[1], lo[2]);
     size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
     g->ke = calloc(count, sizeof *g->ke);
@@ -110,7 +111,7 @@ static double ke_at(const cu_msd *g, vec3 p)
  * never settles). */
 static int holds(const cu_msd *g, int c)
 {
-    return g->ke[c] * cbrt(g->h[0] * g->h[1] * g->h[2]) >= CU_MSD_THIN;
+    return g->ke[c] * g->side >= CU_MSD_THIN;
 }
 
 /* The first scattering, per cell: the power the sunbeam loses in it over its volume. The beam reaches the cell with
@@ -135,10 +136,10 @@ static void first_scattering(cu_msd *g, vec3 sun, double f)
                 vec3 p = v3_add(centre(g, i, j, k), v3_scale(sun, 0.5 * chord));
                 double tau = 0.0;
                 for (double s = 0.5 * step; s < reach; s += step) {
-                    vec3 x = v3_sub(v3_add(p, v3_scale(sun, s)), g->lo);
-                    if (x.x < 0.0 || x.y < 0.0 || x.z < 0.0 || x.x > size.x || x.y > size.y || x.z > size.z)
+                    vec3 x = v3_add(p, v3_scale(sun, s)), r = v3_sub(x, g->lo);
+                    if (r.x < 0.0 || r.y < 0.0 || r.z < 0.0 || r.x > size.x || r.y > size.y || r.z > size.z)
                         break;
-                    tau += step * ke_at(g, v3_add(x, g->lo));
+                    tau += step * ke_at(g, x);
                 }
                 g->q[c] = (float)(exp(-(1.0 - f) * tau) * (1.0 - exp(-(1.0 - f) * g->ke[c] * chord)) / chord);
             }
@@ -154,11 +155,12 @@ static const int OFF[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 
 
 /* Marshak's condition at a face to empty space: no diffuse light comes in, so the flux out is phi_s / 2 with phi_s
  * the fluence at the face, which the half-cell gradient ties to the cell's: with a = 2 D / h (h the side across the
- * face), phi_s = (a phi + G.n) / (a + 1/2) and the flux out (a phi + G.n) / (2a + 1). */
-static double surface_phi(double d, double h, double phi, double gn)
+ * face), phi_s = (a phi + G.n) / (a + 1/2) and the flux out (a phi + G.n) / (2a + 1) (sweep). The diffusive part
+ * alone, a phi / (a + 1/2), is the surface value the gradient and the empty cells take. */
+static double surface_phi(double d, double h, double phi)
 {
     double a = 2.0 * d / h;
-    return (a * phi + gn) / (a + 0.5);
+    return a * phi / (a + 0.5);
 }
 
 static vec3 gradient(const cu_msd *g, int i, int j, int k)
@@ -170,7 +172,7 @@ static vec3 gradient(const cu_msd *g, int i, int j, int k)
         for (int e = 0; e < 2; e++) {
             const int *o = OFF[2 * a + e];
             side[e] = inside(g, i + o[0], j + o[1], k + o[2]) ? g->phi[cu_msd_at(g, i + o[0], j + o[1], k + o[2])]
-                                                              : surface_phi(g->d[c], g->h[a], g->phi[c], 0.0);
+                                                              : surface_phi(g->d[c], g->h[a], g->phi[c]);
         }
         v[a] = (side[0] - side[1]) / (2.0 * g->h[a]);
     }
@@ -256,14 +258,13 @@ static void surface_values(cu_msd *g)
                     if (!inside(g, ii, jj, kk))
                         continue;
                     int cj = cu_msd_at(g, ii, jj, kk);
-                    sum[0] += surface_phi(g->d[cj], g->h[f >> 1], g->phi[cj], 0.0);
+                    sum[0] += surface_phi(g->d[cj], g->h[f >> 1], g->phi[cj]);
                     for (int e = 1; e < 4; e++)
                         sum[e] += g->out[4 * cj + e];
                     m++;
                 }
                 for (int e = 0; e < 4 && m > 0; e++)
                     g->out[4 * c + e] = (float)(sum[e] / m);
-
             }
 }
 

@@ -18,6 +18,7 @@
 typedef struct cu_msd {
     int n[3];             /* cells along x, y, z */
     double h[3];          /* cell sides along x, y, z, m */
+    double side;          /* their geometric mean: a cell holds cloud when k_e side >= CU_MSD_THIN */
     vec3 lo;              /* cloud-local position of the grid's lowest corner */
     float *ke;            /* extinction, the mean of 8 samples in each cell, m^-1 (true, not delta-M) */
     float *q;             /* the sunbeam's first scattering per unit volume and unit irradiance (delta-M), m^-1 */
