@@ -1,34 +1,58 @@
 // shaders_gles/ms_diffusion.glsl: multiple scattering from the cloud's own diffusion solution (MS_MODE 4, ms.mode =
-// diffusion), included by cloud.frag after ext_diffuse() and DM_SCALE. src/core/ms_diffusion.c solves flux-limited
-// diffusion of the sunbeam's first scattering on a grid over the cloud; the cloud pass reads the fluence phi and flux
-// F here (per unit sun irradiance, trilinear): the diffuse radiance is L(w) = (phi + 3 F.w) / 4pi (P1), and what it
-// scatters toward the eye per unit extinction, through the chopped phase function of asymmetry g (the peak stays on
-// its way), is (1 - f) (phi + 3 g F.w) / 4pi with w the direction toward the eye. Single scattering stays with the
-// exact phase function (source_from): this is light scattered twice and more. Without MS_MODE 4, zero.
+// diffusion), included by cloud.frag after ext_diffuse(), segment_source() and DM_SCALE. src/core/ms_diffusion.c
+// solves flux-limited diffusion on a grid over the cloud in a delta-M medium: the phase function's forward lobe
+// (f_d = g^2 of what the chop left, g its mean cosine) counts as unscattered, the rest has asymmetry g' = g / (1 + g)
+// and the extinction (1 - f) k_e, (1 - f) = (1 - f_chop)(1 - f_d) (pass_msd.c). Diffusion of a medium as forward-
+// peaked as a cloud's is only accurate so (Joseph, Wiscombe & Weinman 1976): in plain P1 the radiance leaving the
+// cloud near its surface is too smooth in angle, and every view came out 10-35 % dark.
+// The radiance then follows Nakajima & Tanaka's (1988) split: the exact single scattering of the unscaled beam stays
+// in source_from() (phase ph0 - msd_ph, attenuated by the true optical depths), and everything else is the scaled
+// medium's: its own single scattering (msd_ph, the beam e^-(1-f) tau_s) and the diffuse light (phi + 3 g' F.w) / 4pi
+// read from the grid (per unit sun irradiance, trilinear), both attenuated toward the eye by the scaled optical
+// depth (msd_interval). msd_ph = min((1 - f) HG(g', mu), ph0): away from the forward lobe the scaled medium's single
+// scattering uses the exact phase function (Nakajima & Tanaka's TMS); inside it, the lobe's excess stays exact, so
+// it is counted once. Without MS_MODE 4, nothing.
 #if MS_MODE == 4
 uniform highp sampler3D u_msd; // RGBA16F: phi, F (pass_msd.c)
 uniform vec3 u_msd_lo;         // cloud-local corner of the grid
 uniform vec3 u_msd_size;       // its extent (m)
-uniform vec2 u_msd_k;          // (1 - f) / 4pi and 3 g
+uniform vec2 u_msd_k;          // (1 - f) / 4pi and 3 g'
+uniform vec3 u_msd_dm;         // 1 - f_d (the scaled over the chopped extinction), g', 1 - f
 vec3 msd_dir;                  // the ray's direction
+vec3 msd_ph;                   // the scaled medium's phase per unit extinction toward the eye, this ray
+vec3 msd_S;                    // the scaled medium's source at the last sample (msd_source)
 
-void msd_begin(vec3 dir)
+// Per ray: its direction and the source phase split; returns what stays with the exact single scattering.
+vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
 {
     msd_dir = dir;
+    msd_ph = min(vec3(u_msd_dm.z * hg(u_msd_dm.y, mu)), ph0);
+    return ph0 - msd_ph;
 }
 
-vec3 grid_source(vec3 p)
+// The scaled medium's source at p per unit extinction, ts the chopped optical depth toward the sun (other clouds'
+// included): its single scattering plus the grid's diffuse light.
+void msd_source(vec3 p, float ts)
 {
     vec4 v = texture(u_msd, (p - u_msd_lo) / u_msd_size);
-    return vec3(u_msd_k.x * max(v.x - u_msd_k.y * dot(v.yzw, msd_dir), 0.0) * ext_diffuse(p));
-}
-#else
-void msd_begin(vec3 dir)
-{
+    msd_S = msd_ph * exp(-u_msd_dm.x * ts) +
+            vec3(u_msd_k.x * max(v.x - u_msd_k.y * dot(v.yzw, msd_dir), 0.0) * ext_diffuse(p));
 }
 
-vec3 grid_source(vec3 p)
+// What a segment of chopped optical depth dt at chopped depth taup from the eye sends to the eye, from the scaled
+// sources S0 and S1 at its ends: attenuated by the scaled optical depth, per unit of the true extinction.
+vec3 msd_interval(float taup, float dt, vec3 S0, vec3 S1)
 {
-    return vec3(0.0);
+    float x = u_msd_dm.x;
+    return exp(-x * taup) * segment_source(x * dt, S0, S1) / (x * DM_SCALE);
+}
+#else
+vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
+{
+    return ph0;
+}
+
+void msd_source(vec3 p, float ts)
+{
 }
 #endif

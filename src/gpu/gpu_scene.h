@@ -73,7 +73,8 @@ typedef struct cu_gpu_scene {
     int shadow;              /* the sun-map method in use (the scene's, or front when the context cannot) */
     int ms_mode;             /* the multiple-scattering mode in use */
     double peak_f[3];        /* weight of the chopped Mie peak per channel (0: analytic phase) */
-    double phase_asym;       /* mean cosine of the phase function without its peak (green; ms.mode = diffusion) */
+    double phase_asym;       /* mean cosine of the phase function without its peak (green) */
+    double msd_f, msd_g;     /* ms.mode = diffusion's delta-M medium: f of the whole phase function, g' of the rest */
     double white[3];         /* the tone mapper's white balance (sky.h) */
 
     GLuint noise_tex, phase_tex;

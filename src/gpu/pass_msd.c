@@ -52,7 +52,7 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
     }
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    cu_msd_solve(&m->grid, sun, ctx->peak_f[1], ctx->phase_asym, MSD_MOST_SWEEPS, MSD_TOL);
+    cu_msd_solve(&m->grid, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     m->sun = sun;
     m->solved = 1;

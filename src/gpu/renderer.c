@@ -267,6 +267,10 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
     for (int c = 0; c < 3; c++)
         ctx->peak_f[c] = t.f[c];
     ctx->phase_asym = t.mean_cos[1];
+    /* Diffusion's medium (ms_diffusion.glsl): the forward lobe g^2 of what the chop left counts as unscattered too. */
+    double g = ctx->phase_asym, f_lobe = g > 0 ? g * g : 0;
+    ctx->msd_f = 1.0 - (1.0 - ctx->peak_f[1]) * (1.0 - f_lobe);
+    ctx->msd_g = g > 0 ? g / (1.0 + g) : g;
     /* The table's sigma_ext wins (DESIGN.md): every cloud's core extinction, scaled from the droplets' 2 pi r_e^2. */
     double sigma_geo = cu_scene_extinction_at(&r->scene, 1.0); /* m^-1 per cm^-3; r_e > 0, so > 0 */
     double sigma = t.sigma_ext_um2[1] > 0 ? 1e6 * t.sigma_ext_um2[1] * 1e-12 : sigma_geo;

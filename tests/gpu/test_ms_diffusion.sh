@@ -1,13 +1,15 @@
-# tests/gpu/test_ms_diffusion.sh: ms.mode = diffusion in the renderer against the path tracer. A wide slab seen from
-# above, lit from the side of the sky the camera looks away from (scattering angle about 130 degrees), an 8x8 view
-# of its interior: the light it sends back, all orders, from cumulo-pt at 4096 samples a pixel, against the renderer's
-# (single scattering exact, the rest from the cloud's diffusion grid). Two slabs: a thin one with a sharp edge
-# (optical depth 4.5, boundary 5 m): the diffusion grid within 15 % of the path tracer (5 % measured; the octave
-# model misses 30 %); a thick one with the sweep's fuzzy 62 m boundary (optical depth 18): the octave model misses
-# 74 % of its light, the diffusion grid must miss at most a third of that (20 % measured: in P1 the first
-# scattering's forward push is a cosine lobe, which takes light from views against the beam, and near the lit face
-# the push is as large as the fluence). Also: the grid is solved (the debug log says so), and a frame in which many
-# clouds' maps follow the sun re-solves one grid, not all of them (pass_msd.h's allowance). From the repository root.
+# tests/gpu/test_ms_diffusion.sh: ms.mode = diffusion in the renderer against the path tracer and its own closed form.
+# A wide slab seen from above, the sun behind it (scattering angle 128 degrees), an 8x8 view of its interior: the
+# light it sends back, all orders, from cumulo-pt at 4096 samples a pixel, against the renderer's (the delta-M medium
+# solved on the cloud's diffusion grid, single scattering split after Nakajima & Tanaka; ms_diffusion.glsl). Two
+# slabs. A thin one with a sharp edge (optical depth 4.5, boundary 5 m) is where delta-Eddington is weakest: its
+# scaled optical depth is 1.2, and the model's own plane-parallel answer (eddington(), below) is 24 % under the path
+# tracer. There the renderer must (a) reproduce that closed form within 12 % (it checks the grid, the split and the
+# source integration; measured +9 %, of which Wilson's limiter, which the closed form lacks, is 6) and (b) come closer
+# to the path tracer than the octave model (measured -16 % against the octaves' -30 %). A thick one with the sweep's
+# fuzzy 62 m boundary (optical depth 18): within 10 % of the path tracer (measured -3 %; the octave model misses 74 %).
+# Also: the grid is solved (the debug log says so), and a frame in which many clouds' maps follow the sun re-solves
+# one grid, not all of them (pass_msd.h's allowance). From the repository root.
 . tests/lib.sh
 C=${CUMULO:-build/cumulo}
 PT=${CUMULO_PT:-build/cumulo-pt}
@@ -43,6 +45,25 @@ SCENE
 }
 # mean of an 8x8 PFM's green channel
 mean() { tail -c 768 "$1" | od -An -f -w12 -v | awk '{ s += $2; n++ } END { if (n == 64) printf "%.9g", s / n }'; }
+# The delta-Eddington radiance the model predicts for a plane-parallel slab of optical depth $1 (irradiance 100, HG g
+# 0.853, conservative; the sun at mu0 = sin 60 deg, the eye at mu = 1500 / |(1500, 600)|, cos of the scattering angle
+# -0.618): the scaled medium (f = g^2, g' = g / (1 + g), depth (1 - f) tau) solved in closed form with Marshak's
+# conditions (F = A - E0 mu0 e^-t/mu0, phi = B - 3 (1 - g') A t - 3 mu0^2 E0 e^-t/mu0), its source (phi - 3 g' F mu) /
+# 4pi plus the split single scattering integrated toward the eye.
+eddington() {
+  awk -v tau="$1" 'function hg(g, c) { return (1 - g * g) / (4 * 3.14159265 * (1 + g * g - 2 * g * c) ^ 1.5) }
+    BEGIN { g = 0.853; m0 = sqrt(3) / 2; mu = 1500 / sqrt(1500 ^ 2 + 600 ^ 2); c = -0.618; E = 100
+      f = g * g; gp = g / (1 + g); T = (1 - f) * tau; eT = exp(-T / m0)
+      a21 = 1 + 1.5 * (1 - gp) * T; b1 = E * m0 + 1.5 * m0 * m0 * E; b2 = E * m0 * eT - 1.5 * m0 * m0 * E * eT
+      det = -0.5 - 0.5 * a21; A = (-0.5 * b1 - 0.5 * b2) / det; B = (b2 - a21 * b1) / det
+      p0 = hg(g, c); ps = (1 - f) * hg(gp, c); if (ps > p0) ps = p0
+      L = (p0 - ps) * E * m0 / (m0 + mu) * (1 - exp(-tau * (1 / m0 + 1 / mu)))
+      n = 4000; dt = T / n
+      for (i = 0; i < n; i++) { t = (i + 0.5) * dt; e = exp(-t / m0); F = A - E * m0 * e
+        phi = B - 3 * (1 - gp) * A * t - 3 * m0 * m0 * E * e; S = (phi - 3 * gp * F * mu) / (4 * 3.14159265)
+        L += ((S > 0 ? S : 0) + ps / (1 - f) * E * e) * exp(-t / mu) * dt / mu }
+      printf "%.4f", L }'
+}
 want2=6 want3=8
 for s in "thin 100 5" "thick 400 62"; do
   set -- $s
@@ -54,12 +75,18 @@ for s in "thin 100 5" "thick 400 62"; do
   pt=$(mean "$T/$1_pt.pfm"); di=$(mean "$T/$1_diffusion.pfm"); oc=$(mean "$T/$1_octaves.pfm")
   if grep -q "ms.mode = diffusion: .* sweeps" "$T/$1_log"; then t_ok "$1 slab: the diffusion grid is solved"
   else t_fail "$1 slab: the diffusion grid is solved" "no solve in the debug log"; fi
-  # thin: within 15 % and closer than the octaves; thick: at most a third of the octaves' miss
-  bound=0.15; [ "$1" = thick ] && bound=0
+  if [ "$1" = thin ]; then
+    ed=$(eddington 4.5)
+    if awk -v e="$ed" -v d="$di" 'BEGIN { r = d / e - 1; exit !(e > 0 && d == d && r < 0.12 && r > -0.12) }'; then
+      t_ok "thin slab: diffusion $di against its plane-parallel closed form $ed"
+    else t_fail "thin slab: diffusion within 12 % of its plane-parallel closed form" "diffusion '$di', closed form '$ed'"; fi
+  fi
+  # thin: closer to the path tracer than the octaves; thick: within 10 % of it
+  bound=0; [ "$1" = thick ] && bound=0.10
   if awk -v p="$pt" -v d="$di" -v o="$oc" -v b="$bound" 'BEGIN { e = d / p - 1; f = o / p - 1; e = e < 0 ? -e : e;
-       f = f < 0 ? -f : f; exit !(p > 0 && d == d && (b > 0 ? e < b && e < f : 3 * e <= f)) }'; then
+       f = f < 0 ? -f : f; exit !(p > 0 && d == d && e < f && (b == 0 || e < b)) }'; then
     t_ok "$1 slab: diffusion $di against the path tracer's $pt (octaves $oc)"
-  else t_fail "$1 slab: diffusion against the path tracer (thin: within 15 %; thick: a third of the octaves' miss)" \
+  else t_fail "$1 slab: diffusion against the path tracer (thin: closer than the octaves; thick: within 10 %)" \
               "diffusion '$di', path tracer '$pt', octaves '$oc'"; fi
 done
 # Five clouds in view, the sun from the date (2026-06-21 08:00 UTC, Zurich), a frame every 145 s of scene time: the
