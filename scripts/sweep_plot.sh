@@ -1,5 +1,5 @@
 #!/bin/sh
-# scripts/sweep_plot.sh DIR: draws DIR/pareto.png (time ratio vs mean relative RMSE) from DIR/pareto.dat, which
+# scripts/sweep_plot.sh DIR: draws DIR/pareto.png (time ratio vs mean relative RMSE on the cloud's pixels) from DIR/pareto.dat, which
 # `cumulo sweep` writes (columns: time ratio, relative RMSE, kind, label; kind 0 = one knob changed from high,
 # 1 = greedy combination, 2 = preset, 9 = the reference's own noise level). Needs gnuplot (Debian: gnuplot-nox);
 # without it says so and exits 3 (the CSV and tables are still there).
@@ -16,13 +16,13 @@ gnuplot -e "set terminal" 2>/dev/null | grep -q pngcairo || term="png noenhanced
 noise=$(awk '$3 == 9 { print $2 }' "$dat")
 noiseline=
 [ -n "$noise" ] && noiseline="set arrow from graph 0, first $noise to graph 1, first $noise nohead dt 2 lc rgb '#888888'
-set label 'reference (path tracer) noise level' at graph 0.01, first $noise offset 0,0.7 tc rgb '#888888'"
+set label 'reference (path tracer) noise level, whole image' at graph 0.01, first $noise offset 0,0.7 tc rgb '#888888'"
 gnuplot <<GP
 set terminal $term
 set output "$dir/pareto.png"
 set title "cumulo: speed vs accuracy against the path tracer (means over the views; time relative to high, same run)"
 set xlabel "frame time / high"
-set ylabel "mean relative RMSE (RMSE / mean reference radiance)"
+set ylabel "mean relative RMSE on the cloud's pixels (3x3 box)"
 set logscale y
 set grid
 set key top right

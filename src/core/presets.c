@@ -10,12 +10,12 @@ static const char *const SETTINGS[CU_PRESET_COUNT] = {
     "light.sun_samples=32;light.sun_filter=bilinear;ms.mode=slab;ms.blur=200;ms.sky_light=on;ms.closure=on;"
     "quality.integration=exponential;quality.cloud_downsample=1",
     /* medium */
-    "quality.segments=5;quality.segment_ratio=1.3;quality.hull_tessellation=10;quality.max_intervals=6;"
+    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
     "light.sun_samples=32;light.sun_filter=nearest;ms.mode=octaves;ms.blur=200;ms.sky_light=on;ms.closure=on;"
     "quality.integration=exponential;quality.cloud_downsample=1",
     /* low */
-    "quality.segments=2;quality.segment_ratio=1.3;quality.hull_tessellation=4;quality.max_intervals=6;"
+    "quality.segments=2;quality.segment_ratio=1.6;quality.hull_tessellation=6;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
     "light.sun_samples=32;light.sun_filter=nearest;ms.mode=octaves;ms.blur=200;ms.sky_light=on;ms.closure=on;"
     "quality.integration=exponential;quality.cloud_downsample=2",

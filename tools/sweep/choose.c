@@ -1,6 +1,9 @@
 /* tools/sweep/choose.c: choosing the medium and low presets from the measurements.
  *
- * Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
+ * The error a preset is chosen by is where the light is: the relative RMSE on the cloud's own pixels (result.error,
+ * mean over views), not over the whole image, which the sky dominates and a flattened cloud can win. A point that is
+ * flatter than high, or less like the truth in structure (sw_flatter: contrast p90/p10 further from the path
+ * tracer's, SSIM lower), is never taken, however small its error. Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
  * time saved (prediction: the one-at-a-time deltas, relative to the value the knob has now), re-measure the
  * combination on every view, until the measured time ratio is within the budget. A change that, measured, does not
  * save at least 1 % of high's time is taken back and not tried again (the first run kept ms.sky_light = off, which
@@ -14,7 +17,7 @@
 
 /* The next change to try from cur: the knob and value with the least predicted error increase per time saved, or
  * -1 in *bk when no change saves time. */
-static void best_change(const config *cur, const result *single_agg, const int *vidx, double e_high,
+static void best_change(const config *cur, const result *single_agg, const int *vidx, const result *high,
                         const unsigned char *banned, int *bk, int *bv)
 {
     double best = 1e300;
@@ -26,11 +29,13 @@ static void best_change(const config *cur, const result *single_agg, const int *
                 continue;
             int cj = cur->v[k];
             const result *a = &single_agg[vidx[k * SW_MAX_VALUES + j]];
-            double ta = a->time_ratio, ea = a->rel_rmse, tc = 1.0, ec = e_high;
+            if (sw_flatter(a, high))
+                continue;
+            double ta = a->time_ratio, ea = a->error, tc = 1.0, ec = high->error;
             if (cj != sw_knobs[k].high) {
                 const result *b = &single_agg[vidx[k * SW_MAX_VALUES + cj]];
                 tc = b->time_ratio;
-                ec = b->rel_rmse;
+                ec = b->error;
             }
             double dt = ta - tc, de = ea - ec;
             if (dt > -0.01) /* saves under 1 % of high's time: noise */
@@ -44,8 +49,13 @@ static void best_change(const config *cur, const result *single_agg, const int *
         }
 }
 
-/* The lowest-error measured point within budget (or the fastest one, *found = 0). */
-static point pick(const result *single_agg, const int *vidx, double e_high, const point *trail, int ntrail,
+int sw_flatter(const result *r, const result *high)
+{
+    return r->ssim < high->ssim - 0.01 || r->contrast_err > high->contrast_err + 0.02;
+}
+
+/* The lowest-error measured point within budget and no flatter than high (or the fastest one, *found = 0). */
+static point pick(const result *single_agg, const int *vidx, const result *high, const point *trail, int ntrail,
                   double budget, int *found, double *fastest)
 {
     point best = {0}, fast = {0};
@@ -55,9 +65,8 @@ static point pick(const result *single_agg, const int *vidx, double e_high, cons
         point cand;
         if (i < 0) {
             config_high(&cand.c);
-            memset(&cand.agg, 0, sizeof cand.agg);
+            cand.agg = *high;
             cand.agg.time_ratio = 1.0;
-            cand.agg.rel_rmse = e_high;
         } else if (i < ntrail) {
             cand = trail[i];
         } else {
@@ -69,7 +78,8 @@ static point pick(const result *single_agg, const int *vidx, double e_high, cons
             cand.c.v[k] = j;
             cand.agg = single_agg[vidx[k * SW_MAX_VALUES + j]];
         }
-        if (cand.agg.time_ratio <= budget && (!*found || cand.agg.rel_rmse < best.agg.rel_rmse)) {
+        if (cand.agg.time_ratio <= budget && !sw_flatter(&cand.agg, high) &&
+            (!*found || cand.agg.error < best.agg.error)) {
             best = cand;
             *found = 1;
         }
@@ -81,12 +91,12 @@ static point pick(const result *single_agg, const int *vidx, double e_high, cons
     return *found ? best : fast;
 }
 
-int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, double e_high, point *med, point *low,
-                      point *trail, int *ntrail)
+int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, const result *high, point *med,
+                      point *low, point *trail, int *ntrail)
 {
     config cur;
     config_high(&cur);
-    double t_cur = 1.0, e_cur = e_high;
+    double t_cur = 1.0, e_cur = high->error;
     unsigned char banned[SW_NKNOBS * SW_MAX_VALUES];
     memset(banned, 0, sizeof banned);
     *ntrail = 0;
@@ -94,7 +104,7 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, doub
         if (t_cur <= sw->budget_low)
             break;
         int bk, bv;
-        best_change(&cur, single_agg, vidx, e_high, banned, &bk, &bv);
+        best_change(&cur, single_agg, vidx, high, banned, &bk, &bv);
         if (bk < 0) {
             printf("sweep: presets: no single-knob change left that saves time (at %.2fx)\n", t_cur);
             break;
@@ -111,22 +121,24 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, doub
         trail[*ntrail].c = cur;
         trail[*ntrail].agg = agg;
         (*ntrail)++;
-        printf("sweep: presets: step %d measured: time %.3fx, relRMSE %.4f\n", step + 1, agg.time_ratio, agg.rel_rmse);
-        if (agg.time_ratio > t_cur - 0.01 && agg.rel_rmse > e_cur) {
-            printf("sweep: presets: step %d saved no time and cost accuracy: taken back\n", step + 1);
+        printf("sweep: presets: step %d measured: time %.3fx, cloud relRMSE %.4f, SSIM %.3f, contrast off by %.3f\n",
+               step + 1, agg.time_ratio, agg.error, agg.ssim, agg.contrast_err);
+        if ((agg.time_ratio > t_cur - 0.01 && agg.error > e_cur) || sw_flatter(&agg, high)) {
+            printf("sweep: presets: step %d saved no time and cost accuracy, or flattened the picture: taken back\n",
+                   step + 1);
             cur.v[bk] = was;
             banned[bk * SW_MAX_VALUES + bv] = 1;
             continue;
         }
         t_cur = agg.time_ratio;
-        e_cur = agg.rel_rmse;
+        e_cur = agg.error;
     }
     point *pp[2] = {med, low};
     double budget[2] = {sw->budget_med, sw->budget_low};
     for (int q = 0; q < 2; q++) {
         int found;
         double fastest;
-        *pp[q] = pick(single_agg, vidx, e_high, trail, *ntrail, budget[q], &found, &fastest);
+        *pp[q] = pick(single_agg, vidx, high, trail, *ntrail, budget[q], &found, &fastest);
         if (!found)
             printf("sweep: presets: nothing measured within %.2fx; taking the fastest point (%.3fx)\n", budget[q],
                    fastest);

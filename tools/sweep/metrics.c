@@ -102,6 +102,13 @@ void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg
         agg->visible += r->visible / sw->nviews;
         agg->rmse += r->rmse / sw->nviews;
         agg->mean_ref += r->mean_ref / sw->nviews;
+        const view *v = &sw->v[s];
+        int cloud = v->mask && v->mask_n > 0;
+        agg->cloud_rel_rmse += r->cloud_rel_rmse / sw->nviews;
+        agg->ssim += (cloud ? r->ssim : 1.0) / sw->nviews;
+        agg->contrast_err += (cloud && r->contrast > 0 && v->ref_contrast > 0 ? fabs(log(r->contrast / v->ref_contrast))
+                                                                                : 0.0) / sw->nviews;
+        agg->error += (cloud ? r->cloud_rel_rmse : r->rel_rmse) / sw->nviews;
         if (r->maxabs > agg->maxabs)
             agg->maxabs = r->maxabs;
     }

@@ -185,7 +185,7 @@ int sw_run(sweep *sw)
     if (rc)
         fprintf(stderr, "cumulo-sweep: out of memory\n");
     for (int s = 0; s < sw->nviews && rc == 0; s++) {
-        rc = measure_variants(sw, &sw->v[s], vars, vknob, nv, per_view[s]);
+        rc = sw_view_cloud_mask(sw, &sw->v[s]) || measure_variants(sw, &sw->v[s], vars, vknob, nv, per_view[s]);
         if (rc == 0)
             variant_rows(sw, sw->v[s].name, vars, vknob, vval, nv, per_view[s], sw->v[s].pt_rel_noise);
     }
@@ -197,7 +197,7 @@ int sw_run(sweep *sw)
     point med, low, high, trail[SW_MAX_GREEDY];
     int ntrail = 0;
     if (rc == 0)
-        rc = sw_choose_presets(sw, agg, vidx, agg[0].rel_rmse, &med, &low, trail, &ntrail);
+        rc = sw_choose_presets(sw, agg, vidx, &agg[0], &med, &low, trail, &ntrail);
     const point *presets[3] = {&low, &med, &high};
     if (rc == 0) {
         config_high(&high.c);
@@ -227,6 +227,8 @@ int sw_run(sweep *sw)
     }
     for (int s = 0; s < sw->nviews; s++) {
         free(per_view[s]);
+        free(sw->v[s].mask);
+        sw->v[s].mask = NULL;
         cu_image_free(&sw->v[s].ref);
     }
     free(agg);

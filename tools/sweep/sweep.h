@@ -72,6 +72,9 @@ typedef struct result {
     double cloud_rel_rmse; /* RMSE / mean reference after a 3x3 box filter of both (jitter and PT noise averaged) */
     double contrast;       /* p90 / p10 of the 3x3-filtered luminance */
     double ssim;           /* mean SSIM of the tone-mapped 8-bit luminance, 7x7 windows centred on cloud pixels */
+    double contrast_err;   /* |ln(contrast / the reference's)|: flatter or steeper than the truth (0: as contrasted) */
+    double error;          /* what presets are chosen by (sw_aggregate): cloud_rel_rmse, or rel_rmse on a view
+                            * without cloud pixels */
     /* where the light goes: the cloud's pixels in fifths by the reference's filtered luminance, darkest first; in
      * each, the image's light over the reference's (1: right; > 1 in the darkest fifth and < 1 in the brightest is a
      * flattened picture, whatever the mean error) */
@@ -169,9 +172,12 @@ int sw_fit_run(sweep *sw);
 
 /* ---- choose.c ---- */
 /* Greedy preset choice from the one-knob aggregates (vidx maps knob * SW_MAX_VALUES + value to a variant, -1 if not
- * measured); trail gets the greedy combinations measured (at most SW_MAX_GREEDY). */
-int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, double e_high, point *med, point *low,
-                      point *trail, int *ntrail);
+ * measured; high the aggregate of high); trail gets the greedy combinations measured (at most SW_MAX_GREEDY). */
+int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, const result *high, point *med,
+                      point *low, point *trail, int *ntrail);
+/* Whether r is flatter or less like the truth in structure than high: SSIM more than 0.01 lower, or the contrast
+ * more than 0.02 further off (in |ln|). Such a point is measured but never a preset. */
+int sw_flatter(const result *r, const result *high);
 
 /* ---- report.c ---- */
 /* DIR/name opened for writing (NULL with a message), and closed with its write errors reported (1 with a message). */
