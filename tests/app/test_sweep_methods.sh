@@ -18,6 +18,13 @@ if [ $rc -eq 0 ] && [ -s "$T/methods.csv" ] && [ -s "$T/methods.md" ] && [ -s "$
   t_ok "a run writes methods.csv, methods.md, methods.dat"
 else t_fail "a run writes its files" "exit $rc: $(tail -2 "$T/err.txt")"; fi
 
+# --scenes of one's own: `high` is the first view's settings (the default views are Henyey-Greenstein; a Mie view
+# rendered with them would be compared with a reference it is not)
+$S --methods --scenes cumulus,sweep_cumulus_hg --refs-only --size 8x6 --spp 1 --out "$T/own" --ref-dir "$T/ref" \
+   >"$T/own.txt" 2>&1
+grep -q "high = scenes/cumulus.scene$" "$T/own.txt" && t_ok "--scenes: high is the first view's settings" ||
+  t_fail "--scenes: high is the first view's settings" "$(grep 'high = ' "$T/own.txt")"
+
 # One row a configuration: 21 of Kol's method, 18 of the uniform march (methods.c's tables).
 kol=$(grep -c '^sweep_cumulus_hg,kol,' "$T/methods.csv"); uni=$(grep -c '^sweep_cumulus_hg,uniform,' "$T/methods.csv")
 [ "$kol" -eq 21 ] && [ "$uni" -eq 18 ] && t_ok "39 configurations in the CSV: 21 Kol, 18 uniform" ||

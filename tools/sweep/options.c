@@ -49,7 +49,8 @@ static const char HELP[] =
     "                       march (quality.method = uniform, 8..128 steps x 2..8 toward the sun), timed interleaved,\n"
     "                       error on the cloud's pixels with contrast and SSIM; writes DIR/methods.md, methods.csv,\n"
     "                       methods.dat (default views " METHODS_SCENES ",\n"
-    "                       baseline " METHODS_BASELINE ", time size 320x240)\n"
+    "                       baseline " METHODS_BASELINE ", or the first view's file with --scenes; time size\n"
+    "                       320x240)\n"
     "  --fit-octaves        instead of the knobs: fit the octave model of multiple scattering (ms.octaves, ms.a, ms.b,\n"
     "                       ms.c) to the path tracer by coordinate descent on the cloud's pixels, error only; writes\n"
     "                       DIR/fit.md, fit.csv, fit.txt (default views the training scenes in scenes/fit/, 1024 spp)\n"
@@ -273,6 +274,7 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         if (!set_spp && !sw->quick)
             sw->spp = FIT_SPP;
     }
+    int own_scenes = scenes != NULL;
     if (sw->methods) {
         if (!scenes)
             scenes = METHODS_SCENES;
@@ -281,5 +283,12 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         if (!set_tsize && !sw->quick)
             sw->tw = 320, sw->th = 240;
     }
-    return parse_views(sw, scenes ? scenes : DEFAULT_SCENES);
+    int rc = parse_views(sw, scenes ? scenes : DEFAULT_SCENES);
+    if (rc)
+        return rc;
+    /* --methods on views of one's own: `high` is the first view's settings, not the default views' (whose phase
+     * function is Henyey-Greenstein: on views with the Mie table it would be compared with references it is not) */
+    if (sw->methods && own_scenes && !set_baseline)
+        sw->baseline = sw->v[0].path;
+    return 0;
 }
