@@ -75,6 +75,9 @@ CHECK_TESTS += tests/app/test_sun_cli.sh tests/app/test_sweep_methods.sh tests/a
 # The sweep's cloud metrics (tools/sweep/metrics.c) on images whose answers are known; no GL.
 $(eval $(call test_program,test_sweep_metrics,tests/sweep/test_sweep_metrics.c tools/sweep/metrics.c $(CORE),\
   -Itools/sweep,$(LIB_LIBS)))
+# How the sweep picks presets (tools/sweep/choose.c) from made-up measurements: by the cloud's error, never flatter.
+$(eval $(call test_program,test_sweep_choose,tests/sweep/test_sweep_choose.c tools/sweep/choose.c tools/sweep/knobs.c \
+  $(CORE),-Itools/sweep,$(LIB_LIBS)))
 
 # platform: decoders and parsers on recorded input, back ends against fakes of their kernel and libraries.
 $(eval $(call test_program,test_quadrature,tests/platform/test_quadrature.c platform/input/quadrature.c,,))

@@ -9,7 +9,7 @@
  * save at least 1 % of high's time is taken back and not tried again (the first run kept ms.sky_light = off, which
  * cost 0.12 in error and saved nothing once combined). Each preset is then the lowest-error measured point (one-knob
  * variant or greedy combination) within its budget; if none is, the fastest measured point (reported as over
- * budget). Only knob_preset_eligible() values are taken. */
+ * budget), never a flatter one. Only knob_preset_eligible() values are taken. */
 #include "sweep.h"
 #include <stdio.h>
 #include <string.h>
@@ -54,7 +54,8 @@ int sw_flatter(const result *r, const result *high)
     return r->ssim < high->ssim - 0.01 || r->contrast_err > high->contrast_err + 0.02;
 }
 
-/* The lowest-error measured point within budget and no flatter than high (or the fastest one, *found = 0). */
+/* The lowest-error measured point within budget and no flatter than high (or the fastest one no flatter, *found =
+ * 0; high itself is never flatter than high). */
 static point pick(const result *single_agg, const int *vidx, const result *high, const point *trail, int ntrail,
                   double budget, int *found, double *fastest)
 {
@@ -83,7 +84,7 @@ static point pick(const result *single_agg, const int *vidx, const result *high,
             best = cand;
             *found = 1;
         }
-        if (cand.agg.time_ratio < *fastest) {
+        if (cand.agg.time_ratio < *fastest && !sw_flatter(&cand.agg, high)) {
             *fastest = cand.agg.time_ratio;
             fast = cand;
         }
