@@ -20,6 +20,11 @@ command -v qemu-system-x86_64 >/dev/null 2>&1 ||
   fail "qemu-system-x86_64 is not installed: apt-get install qemu-system-x86 (make deps installs it)"
 [ -f /usr/src/linux-source-6.1.tar.xz ] ||
   fail "no kernel source /usr/src/linux-source-6.1.tar.xz: apt-get install linux-source-6.1 (make deps installs it)"
+# The guest sees the host's root read-only but mounts tmpfs over /tmp, /run and /dev/shm (guest-init.sh): a tree
+# there is invisible to it, and every guest test would fail with "no tree".
+case $(pwd)/ in
+  /tmp/* | /run/* | /dev/shm/*) fail "the tree is at $(pwd), which the guest hides under a tmpfs: clone it elsewhere" ;;
+esac
 for f in build/cumulo build/vm/vm_kms build/vm/vm_uinput; do
   [ -x $f ] || fail "$f is not built (make all vm-helpers)"
 done
