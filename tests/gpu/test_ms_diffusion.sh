@@ -79,7 +79,8 @@ for s in "thin 100 5" "thick 400 62"; do
     ed=$(eddington 4.5)
     if awk -v e="$ed" -v d="$di" 'BEGIN { r = d / e - 1; exit !(e > 0 && d == d && r < 0.12 && r > -0.12) }'; then
       t_ok "thin slab: diffusion $di against its plane-parallel closed form $ed"
-    else t_fail "thin slab: diffusion within 12 % of its plane-parallel closed form" "diffusion '$di', closed form '$ed'"; fi
+    else t_fail "thin slab: diffusion within 12 % of its plane-parallel closed form" \
+                "diffusion '$di', closed form '$ed'"; fi
   fi
   # thin: closer to the path tracer than the octaves; thick: within 10 % of it
   bound=0; [ "$1" = thick ] && bound=0.10

@@ -4,9 +4,9 @@
 # the default cumulus: the cloud view; the camera turned away from the cloud (look_at behind it); the sun turned
 # 0.01 degree every frame (cumulo bench --sun-every-frame: a slow knob, or the time of day; the maps follow it every
 # fifth frame) and 0.6 degree every frame (--sun-step 0.6: a knob turned fast, 18 degrees a second at 30 fps; every
-# frame remakes the maps, and a diffusion grid is solved again every frame). 20 frames after 5 warm-up ones (a cheap frame's first
-# few run slower: llvmpipe's threads and caches warming). Rounds interleaved (every case once a round), medians over
-# rounds, ratios to the cloud view in the same run. Prints a Markdown table.
+# frame remakes the maps, and a diffusion grid is solved again every frame). 20 frames after 5 warm-up ones (a cheap
+# frame's first few run slower: llvmpipe's threads and caches warming). Rounds interleaved (every case once a round),
+# medians over rounds, ratios to the cloud view in the same run. Prints a Markdown table.
 # Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
 set -eu
 ROUNDS=${1:-3}
@@ -44,15 +44,17 @@ while [ "$r" -le "$ROUNDS" ]; do
 done
 med() { awk -v c="$1" -v k="$2" '$1 == c && $2 == k { print $3 }' "$T/all" | sort -n |
         awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-echo "| configuration | cloud view (ms) | no cloud on screen (ms) | ratio | sun 0.01° a frame (ms) | ratio | sun 0.6° a frame (ms) | ratio |"
+echo "| configuration | cloud view (ms) | no cloud on screen (ms) | ratio | sun 0.01° a frame (ms) | ratio" \
+  "| sun 0.6° a frame (ms) | ratio |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for c in $CONFIGS; do
   a=$(med "$c" cloud); b=$(med "$c" empty); s=$(med "$c" sun); f=$(med "$c" fast)
   label=$c
   [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
   [ "$c" = diffusion ] && label="medium, ms.mode = diffusion"
-  printf '| %s | %s | %s | %.2f | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" "$(echo "$b $a" | awk '{print $1/$2}')" \
-    "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$f" "$(echo "$f $a" | awk '{print $1/$2}')"
+  printf '| %s | %s | %s | %.2f | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" \
+    "$(echo "$b $a" | awk '{print $1/$2}')" "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$f" \
+    "$(echo "$f $a" | awk '{print $1/$2}')"
 done
 echo
 echo "($ROUNDS rounds, $SIZE, LP_NUM_THREADS=${LP_NUM_THREADS:-unset}, load $(cut -d' ' -f1-3 /proc/loadavg))"

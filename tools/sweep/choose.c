@@ -3,7 +3,9 @@
  * The error a preset is chosen by is where the light is: the relative RMSE on the cloud's own pixels (result.error,
  * mean over views), not over the whole image, which the sky dominates and a flattened cloud can win. A point that is
  * flatter than high, or less like the truth in structure (sw_flatter: contrast p90/p10 further from the path
- * tracer's, SSIM lower), is never taken, however small its error. Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
+ * tracer's, SSIM lower), is never taken, however small its error.
+ *
+ * Greedy: from high, repeatedly apply the single-knob change with the smallest predicted error increase per unit of
  * time saved (prediction: the one-at-a-time deltas, relative to the value the knob has now), re-measure the
  * combination on every view, until the measured time ratio is within the budget. A change that, measured, does not
  * save at least 1 % of high's time is taken back and not tried again (the first run kept ms.sky_light = off, which

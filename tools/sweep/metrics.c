@@ -102,13 +102,11 @@ void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg
         agg->visible += r->visible / sw->nviews;
         agg->rmse += r->rmse / sw->nviews;
         agg->mean_ref += r->mean_ref / sw->nviews;
-        const view *v = &sw->v[s];
-        int cloud = v->mask && v->mask_n > 0;
+        int cloud = sw->v[s].mask && sw->v[s].mask_n > 0;
         agg->cloud_rel_rmse += r->cloud_rel_rmse / sw->nviews;
         agg->ssim += (cloud ? r->ssim : 1.0) / sw->nviews;
-        agg->contrast_err += (cloud && r->contrast > 0 && v->ref_contrast > 0 ? fabs(log(r->contrast / v->ref_contrast))
-                                                                                : 0.0) / sw->nviews;
-        agg->error += (cloud ? r->cloud_rel_rmse : r->rel_rmse) / sw->nviews;
+        agg->contrast_err += r->contrast_err / sw->nviews;
+        agg->error += r->error / sw->nviews;
         if (r->maxabs > agg->maxabs)
             agg->maxabs = r->maxabs;
     }
@@ -262,6 +260,7 @@ static double ssim_on_mask(const sweep *sw, const view *v, const float *img)
 
 void sw_cloud_metrics(const sweep *sw, const view *v, const float *img, result *r)
 {
+    r->error = r->rel_rmse; /* a view without cloud pixels: the whole image's */
     if (!v->mask || v->mask_n == 0)
         return;
     size_t npx = (size_t)sw->ew * sw->eh;
@@ -289,6 +288,8 @@ void sw_cloud_metrics(const sweep *sw, const view *v, const float *img, result *
         r->fifths[k] = fr[k] > 0 ? fi[k] / fr[k] : 0;
     r->cloud_rel_rmse = m > 0 ? sqrt(se / v->mask_n) / (m / v->mask_n) : 0;
     r->contrast = contrast_of(v, li, npx);
+    r->contrast_err = r->contrast > 0 && v->ref_contrast > 0 ? fabs(log(r->contrast / v->ref_contrast)) : 0.0;
+    r->error = r->cloud_rel_rmse;
     r->ssim = ssim_on_mask(sw, v, img);
     free(li);
     free(lr);

@@ -30,13 +30,13 @@ void sw_csv_header(sweep *sw)
     fprintf(sw->csv, "# cumulo sweep: error at %dx%d vs cumulo-pt %d spp; time at %dx%d, median of %d frames after %d "
                      "warm-up; psnr peak = reference 99th-percentile channel value; visible = share of pixels with an "
                      "8-bit tone-mapped channel differing by more than %d; both images clipped where the tone curve "
-                     "saturates (exposure*L/white = 16); ALL rows = means over views (max_abs: max); cloud_rel_rmse, contrast, "
-                     "ssim on the pixels the cloud changes (contrast_err = |ln(contrast / the reference's)|, error = "
-                     "what presets are chosen by: ALL rows only)\n",
+                     "saturates (exposure*L/white = 16); ALL rows = means over views (max_abs: max); cloud_rel_rmse, "
+                     "contrast, ssim on the pixels the cloud changes (contrast_err = |ln(contrast / the reference's)|; "
+                     "error = what presets are chosen by)\n",
             sw->ew, sw->eh, sw->spp, sw->tw, sw->th, sw->frames, sw->warmup, sw->threshold);
     fprintf(sw->csv, "kind,scene,knob,value,changes,time_ms,time_ratio,time_min_ms,time_min_ratio,rmse,psnr_db,"
-                     "psnr_peak,max_abs,visible_pct,mean_ref,rel_rmse,rel_rmse_denoised,pt_rel_noise,cloud_rel_rmse,contrast,"
-                     "ssim,contrast_err,error\n");
+                     "psnr_peak,max_abs,visible_pct,mean_ref,rel_rmse,rel_rmse_denoised,pt_rel_noise,cloud_rel_rmse,"
+                     "contrast,ssim,contrast_err,error\n");
 }
 
 void sw_csv_row(sweep *sw, const char *kind, const char *scene, const char *knob, const char *value, const config *c,
@@ -47,9 +47,9 @@ void sw_csv_row(sweep *sw, const char *kind, const char *scene, const char *knob
     fprintf(sw->csv,
             "%s,%s,%s,%s,\"%s\",%.3f,%.4f,%.3f,%.4f,%.6g,%.3f,%.6g,%.6g,%.3f,%.6g,%.5f,%.5f,%.5f,%.5f,%.4f,%.4f,%.4f,"
             "%.5f\n",
-            kind, scene, knob, value, d, r->time_ms, r->time_ratio, r->tmin_ms, r->tmin_ratio, r->rmse, r->psnr, r->peak,
-            r->maxabs, r->visible, r->mean_ref, r->rel_rmse, r->rel_bias, pt_rel_noise, r->cloud_rel_rmse, r->contrast,
-            r->ssim, r->contrast_err, r->error);
+            kind, scene, knob, value, d, r->time_ms, r->time_ratio, r->tmin_ms, r->tmin_ratio, r->rmse, r->psnr,
+            r->peak, r->maxabs, r->visible, r->mean_ref, r->rel_rmse, r->rel_bias, pt_rel_noise, r->cloud_rel_rmse,
+            r->contrast, r->ssim, r->contrast_err, r->error);
 }
 
 int sw_write_presets(const sweep *sw, const point *const presets[3])
@@ -58,8 +58,8 @@ int sw_write_presets(const sweep *sw, const point *const presets[3])
     if (!f)
         return 1;
     fprintf(f, "# cumulo presets from `cumulo sweep` (budgets: medium <= %.2fx, low <= %.2fx of high's frame time;\n"
-               "# the lowest-error measured point of a greedy descent within each budget, no flatter than high). Time ratio\n"
-               "# and mean relative RMSE on the cloud's pixels over %d views against cumulo-pt.\n",
+               "# the lowest-error measured point of a greedy descent within each budget, no flatter than high).\n"
+               "# Time ratio and mean relative RMSE on the cloud's pixels over %d views against cumulo-pt.\n",
             sw->budget_med, sw->budget_low, sw->nviews);
     for (int p = 2; p >= 0; p--) {
         char line[2048], d[512];
@@ -116,8 +116,8 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
                "LP_NUM_THREADS=%s), as a ratio to `high` timed in the same session (high timed three times among the "
                "variants, frames interleaved round-robin), mean over views. Error: against cumulo-pt (%d spp) at "
                "%dx%d, both images clipped per channel where the display curve saturates (exposure·L/white = 16: the "
-               "sun disk). On the cloud's pixels (those where the reference differs from the sky alone), what presets are "
-               "chosen by: relative RMSE of the luminance after a 3x3 box filter of both images (RMSE / mean "
+               "sun disk). On the cloud's pixels (those where the reference differs from the sky alone), what presets "
+               "are chosen by: relative RMSE of the luminance after a 3x3 box filter of both images (RMSE / mean "
                "reference), how far the contrast p90/p10 is from the reference's (|ln| of their ratio; 0.1 is 10 %%), "
                "SSIM of the tone-mapped luminance; a point flatter than high (contrast 0.02 further off, or SSIM 0.01 "
                "lower) is never a preset. Over the whole image: relative RMSE = RMSE / mean reference radiance; PSNR "
@@ -154,8 +154,9 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
     for (int p = 2; p >= 0; p--) {
         char d[512];
         config_diff(&presets[p]->c, d, sizeof d, ", ");
-        fprintf(f, "| %s | %.3f | %.4f | %.3f | %.3f | %.4f | %s |\n", sw_preset_names[p], presets[p]->agg.time_ratio,
-                presets[p]->agg.error, presets[p]->agg.contrast_err, presets[p]->agg.ssim, presets[p]->agg.rel_rmse, d);
+        const result *a = &presets[p]->agg;
+        fprintf(f, "| %s | %.3f | %.4f | %.3f | %.3f | %.4f | %s |\n", sw_preset_names[p], a->time_ratio, a->error,
+                a->contrast_err, a->ssim, a->rel_rmse, d);
     }
     fprintf(f, "\nPer view at `high` (reference noise: sqrt(mean σ²) of cumulo-pt / mean radiance):\n\n");
     fprintf(f, "| view | high ms | cloud pixels | cloud rel. RMSE | contrast (PT) | SSIM | rel. RMSE (image) | rel. "

@@ -73,8 +73,7 @@ typedef struct result {
     double contrast;       /* p90 / p10 of the 3x3-filtered luminance */
     double ssim;           /* mean SSIM of the tone-mapped 8-bit luminance, 7x7 windows centred on cloud pixels */
     double contrast_err;   /* |ln(contrast / the reference's)|: flatter or steeper than the truth (0: as contrasted) */
-    double error;          /* what presets are chosen by (sw_aggregate): cloud_rel_rmse, or rel_rmse on a view
-                            * without cloud pixels */
+    double error;          /* what presets are chosen by: cloud_rel_rmse, or rel_rmse on a view without cloud pixels */
     /* where the light goes: the cloud's pixels in fifths by the reference's filtered luminance, darkest first; in
      * each, the image's light over the reference's (1: right; > 1 in the darkest fifth and < 1 in the brightest is a
      * flattened picture, whatever the mean error) */
@@ -143,7 +142,8 @@ void sw_compare(const sweep *sw, const view *v, const float *img, result *r);
 void sw_upsample(const float *src, int w, int h, float *dst, int W, int H);
 /* The cloud mask of v from an image of its sky alone (the cloud's density 0), and the reference's contrast on it. */
 int sw_view_mask(const sweep *sw, view *v, const float *sky);
-/* cloud_rel_rmse, contrast and ssim of img against v's reference on v's mask (nothing without a mask). */
+/* cloud_rel_rmse, contrast, contrast_err and ssim of img against v's reference on v's mask, and error (after
+ * sw_compare: without a mask, the whole image's rel_rmse). */
 void sw_cloud_metrics(const sweep *sw, const view *v, const float *img, result *r);
 /* Means over views of result idx (max_abs: the max). */
 void sw_aggregate(const sweep *sw, result *const *per_view, int idx, result *agg);
