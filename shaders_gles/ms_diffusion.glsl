@@ -16,7 +16,6 @@
 uniform highp sampler3D u_msd; // RGBA16F: phi, F (pass_msd.c)
 uniform vec3 u_msd_lo;         // cloud-local corner of the grid
 uniform vec3 u_msd_size;       // its extent (m)
-uniform vec2 u_msd_k;          // (1 - f) / 4pi and 3 g'
 uniform vec3 u_msd_dm;         // 1 - f_d (the scaled over the chopped extinction), g', 1 - f
 vec3 msd_dir;                  // the ray's direction
 vec3 msd_ph;                   // the scaled medium's phase per unit extinction toward the eye, this ray
@@ -36,7 +35,7 @@ void msd_source(vec3 p, float ts)
 {
     vec4 v = texture(u_msd, (p - u_msd_lo) / u_msd_size);
     msd_S = msd_ph * exp(-u_msd_dm.x * ts) +
-            vec3(u_msd_k.x * max(v.x - u_msd_k.y * dot(v.yzw, msd_dir), 0.0) * ext_diffuse(p));
+            vec3(u_msd_dm.z / (4.0 * PI) * max(v.x - 3.0 * u_msd_dm.y * dot(v.yzw, msd_dir), 0.0) * ext_diffuse(p));
 }
 
 // What a segment of chopped optical depth dt at chopped depth taup from the eye sends to the eye, from the scaled

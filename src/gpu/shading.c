@@ -14,7 +14,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
     LOC(ortho); LOC(view_dir); LOC(inv_viewport); LOC(host_depth_on); LOC(host_inv_vp); LOC(host_clear); LOC(host_scale);
-    LOC(shadow_g); LOC(px_map); LOC(motion); LOC(msd_lo); LOC(msd_size); LOC(msd_k); LOC(msd_dm);
+    LOC(shadow_g); LOC(px_map); LOC(motion); LOC(msd_lo); LOC(msd_size); LOC(msd_dm);
 #undef LOC
     cu_gpu_unit(gl, p, "u_sun_ext", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, p, "u_host_depth", CU_UNIT_HOST_DEPTH);
@@ -120,7 +120,6 @@ void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_loc
     gl->Uniform2f(l->ms_gain, (float)ctx->ms_gain[0], (float)ctx->ms_gain[1]);
     gl->Uniform3f(l->msd_lo, (float)ctx->msd_lo.x, (float)ctx->msd_lo.y, (float)ctx->msd_lo.z);
     gl->Uniform3f(l->msd_size, (float)ctx->msd_size.x, (float)ctx->msd_size.y, (float)ctx->msd_size.z);
-    gl->Uniform2f(l->msd_k, (float)((1.0 - ctx->msd_f) / (4.0 * CU_PI)), (float)(3.0 * ctx->msd_g));
     gl->Uniform3f(l->msd_dm, (float)((1.0 - ctx->msd_f) / (1.0 - ctx->peak_f[1])), (float)ctx->msd_g,
                   (float)(1.0 - ctx->msd_f));
     gl->Uniform1f(l->shadow_g, (float)cu_shadow_g(ctx));

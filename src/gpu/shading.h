@@ -11,7 +11,7 @@ typedef struct cu_shading_locs {
         peak_f, ms_gain, out_scale, out_max;
     GLint slab_t, slab_thv, slab_thl, slab_th, slab_lod, sky_right, sky_up, coll_t, coll_thl, coll_thv, coll_phi;
     GLint ortho, view_dir, inv_viewport, host_depth_on, host_inv_vp, host_clear, host_scale, shadow_g;
-    GLint px_map, motion, msd_lo, msd_size, msd_k, msd_dm;
+    GLint px_map, motion, msd_lo, msd_size, msd_dm;
 } cu_shading_locs;
 
 /* Looks every location up once, after linking, and points the samplers at their texture units. */
