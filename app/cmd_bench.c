@@ -235,6 +235,9 @@ int cmd_bench(int argc, char **argv)
         }
     }
     int i95 = (int)(0.95 * (frames - 1) + 0.5);
+    double mean = 0; /* what work spread over frames (a map a band a frame, a closure a degree) costs on average */
+    for (int i = 0; i < frames; i++)
+        mean += t[i] / frames;
     double med = median(t, frames), p95 = t[i95]; /* median() sorts */
     double still_med = camera == CAM_BOTH ? median(t_still, frames) : 0;
     double still_p95 = camera == CAM_BOTH ? t_still[i95] : 0;
@@ -251,8 +254,8 @@ int cmd_bench(int argc, char **argv)
         snprintf(opts + n, sizeof opts - (size_t)n, ":camera=orbit:orbit-step=%g", orbit_step);
     const char *base = strrchr(o.scene_path, '/');
     base = base ? base + 1 : o.scene_path;
-    printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts, 1000.0 / med, med, p95,
-           frames);
+    printf("[%s] %s: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms mean: %.3f ms frames: %d\n", base, opts, 1000.0 / med,
+           med, p95, mean, frames);
     if (passes) { /* each pass's median over the frames (the medians need not add up to the frame's) */
         printf("[%s] %s: passes (median ms, %s):", base, opts, cu_renderer_profiling_clock(s.r));
         for (int k = 0; k < CU_PASS_COUNT; k++)

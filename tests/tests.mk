@@ -42,8 +42,9 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 
 # gpu: renders through both headless back ends against references, closed forms and the CPU (test_sky: the sky pass
 # against the CPU's Preetham model; test_temporal: the temporal grid against whole frames; test_composite: the
-# one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render).
-$(foreach t,render sunmap ms fallback field sky temporal composite impostor,\
+# one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render;
+# test_sun_bands: a creeping sun's maps made a band a frame against whole maps).
+$(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.

@@ -110,6 +110,7 @@ struct cu_scene {
     int noise_octaves;        /* mip levels summed, 1..5 (Kol eq. 3.74 uses 5) */
     int noise_baked;          /* 0/1: the octaves' weighted sum baked into one 64^3 texture (2 reads, not 10) */
     int sun_map_size;         /* texels per side */
+    int sun_map_frames;       /* a creeping sun's maps are made again over this many frames, a band of rows a frame */
     int lod_pixels;           /* a field's clouds smaller on screen than this get the far level of detail */
     int impostor_pixels;      /* a cloud narrower than this on screen is drawn from its impostor (0: never) */
     double impostor_degrees;  /* ... remade when the direction to it has turned by more than this */

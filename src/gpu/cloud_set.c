@@ -76,8 +76,12 @@ void cu_cloud_slot_free_maps(cu_cloud_slot *sl, const cu_gl *gl)
     cu_target_delete(&sl->sun_map, gl);
     cu_target_delete(&sl->slab_map[0], gl);
     cu_target_delete(&sl->slab_map[1], gl);
+    cu_target_delete(&sl->next_sun_map, gl);
+    cu_target_delete(&sl->next_slab_map[0], gl);
+    cu_target_delete(&sl->next_slab_map[1], gl);
     cu_target_delete(&sl->shadow, gl);
     sl->maps_valid = sl->zenith_valid = 0;
+    sl->next_band = 0;
     sl->has_shadow = 0;
     sl->shadow_sig = 0;
 }

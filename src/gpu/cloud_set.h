@@ -32,6 +32,13 @@ typedef struct cu_cloud_slot {
     int maps_valid;            /* made for maps_sun and this look */
     int zenith_valid;
     vec3 maps_sun;
+    /* quality.sun_map_frames > 1: the maps made again a band of rows a frame into these spares, lit by next_sun, and
+     * swapped in with the last band (frame_maps.c); until then the cloud is lit by maps_sun */
+    cu_target next_sun_map, next_slab_map[2];
+    cu_sun_maps next_sun_maps;
+    vec3 next_sun, next_boil;
+    int next_band;             /* bands drawn so far (0: none under way) */
+    int next_zenith;           /* the zenith's slab map is made again too (the noise boiled on) */
     cu_target shadow;          /* other clouds' optical depth over its sun-map square (pass_shadow.c) */
     int has_shadow;            /* this frame: some other cloud shades it, and shadow holds their optical depth */
     uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
@@ -40,10 +47,17 @@ typedef struct cu_cloud_slot {
 } cu_cloud_slot;
 
 /* How far the noise may drift (m), and the sun creep (degrees), before a cloud's maps are remade (a few clouds a
- * frame, frame.c); a sun that jumps farther than CU_SUN_MAP_JUMP remakes every visible cloud's maps at once. */
+ * frame, frame_maps.c); a sun that jumps farther than CU_SUN_MAP_JUMP in one frame, or that a cloud's maps lag by more
+ * than cu_sun_map_lag, remakes them at once. Maps made over quality.sun_map_frames = K frames lag a sun turned v
+ * degrees a frame by up to (2K - 1) v; the bound lets them keep up with a sun turned up to CU_SUN_MAP_JUMP a frame
+ * (at K = 1: 1 degree, whole maps as soon as a cloud's fall a degree behind). */
 #define CU_BOIL_STEP 4.0
 #define CU_SUN_MAP_STEP 0.05
 #define CU_SUN_MAP_JUMP 1.0
+static inline double cu_sun_map_lag(int frames)
+{
+    return (2 * frames - 1) * CU_SUN_MAP_JUMP;
+}
 
 typedef struct cu_cloud_set {
     cu_cloud_slot *slot;

@@ -7,7 +7,6 @@
 #include "glstate.h"
 #include "scene_camera.h"
 #include "sunmap.h"
-#include "upload.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,26 +30,6 @@ void cu_frame_bind_cloud(cu_renderer *r, cu_cloud_slot *sl)
     }
 }
 
-/* A cloud's GL objects, made the first time it is drawn: a field of thousands of clouds pays for the ones seen. */
-static int cloud_objects(cu_renderer *r, cu_cloud_slot *sl, cu_error *err)
-{
-    cu_gpu_scene *ctx = &r->ctx;
-    if (!sl->vao)
-        cu_upload_instances(ctx, &sl->cloud, &sl->inst_vbo, &sl->vao);
-    if (r->scene.method == CU_METHOD_UNIFORM)
-        return 0; /* it marches toward the sun at every sample: no maps to make */
-    if (sl->has_maps && sl->want_size <= sl->map_size)
-        return 0; /* maps only grow: a cloud that recedes keeps its sharper maps (no churn at a size boundary) */
-    if (sl->has_maps)
-        cu_cloud_slot_free_maps(sl, &r->gl);
-    sl->map_size = sl->want_size;
-    if (cu_pass_sun_map_create(&r->pass_sun, &r->gl, sl->map_size, &sl->sun_map, &sl->sun, err) ||
-        cu_pass_slab_maps_create(&r->pass_slab, ctx, sl->map_size, sl->slab_map, &sl->slab, err))
-        return 1;
-    sl->has_maps = 1;
-    return 0;
-}
-
 /* The level of detail of a cloud's maps in a field: about a texel per two pixels the cloud covers on screen, a power
  * of two from 16 up to quality.sun_map_size. A lone cloud always gets quality.sun_map_size. */
 /* The cloud's diameter on screen, in pixels. */
@@ -68,55 +47,6 @@ static int map_size_for(const cu_renderer *r, double pixels)
     while (size < most && size < 0.5 * pixels)
         size *= 2;
     return size < most ? size : most;
-}
-
-/* Cloud sl's maps seen from the sun (and the zenith), made at its mature density (ke_scale 1: the shaders scale the
- * optical depths they read by the density now). Remade at once when it has none, took a new look or the sun jumped
- * more than CU_SUN_MAP_JUMP; when the sun crept past CU_SUN_MAP_STEP or the noise boiled past CU_BOIL_STEP, only
- * while *budget lasts (a few clouds a frame, nearest first): until then the cloud is lit by the sun its maps were
- * made for (cu_frame_bind_cloud), consistently, at most a few hundredths of a degree off. */
-static int cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error *err)
-{
-    cu_gpu_scene *ctx = &r->ctx;
-    if (cloud_objects(r, sl, err))
-        return 1;
-    if (r->scene.method == CU_METHOD_UNIFORM)
-        return 0;
-    double c = v3_dot(sl->maps_sun, ctx->sky->sun_dir);
-    int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
-    int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
-    int urgent = !sl->maps_valid || !sl->zenith_valid || c < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
-    if (!urgent) {
-        if (!boiled && !crept) /* the maps are up to date; a grid a busier frame left behind catches up */
-            return ctx->ms_mode == CU_MS_DIFFUSION &&
-                   cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, 0, &r->msd_allowance, err);
-        if (*budget <= 0) {
-            r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
-            return 0;
-        }
-        (*budget)--;
-    }
-    int resample = boiled || !sl->maps_valid; /* the grid's density: a new look, or the noise boiled on */
-    if (boiled)
-        sl->zenith_valid = 0;
-    sl->maps_boil = sl->boil;
-    sl->maps_sun = ctx->sky->sun_dir;
-    sl->maps_valid = 1; /* what cu_frame_bind_cloud lights it with, from now */
-    double f = sl->factor;
-    sl->factor = 1;
-    cu_frame_bind_cloud(r, sl);
-    sl->cloud.ke = sl->ke_rest;
-    cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, &sl->sun);
-    ctx->sun = sl->sun;
-    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, &sl->slab);
-    if (!sl->zenith_valid)
-        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab);
-    sl->zenith_valid = 1;
-    int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
-             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, urgent ? NULL : &r->msd_allowance,
-                                err);
-    sl->factor = f;
-    return rc;
 }
 
 /* The frame's view and projection: the host's matrices, or the scene's [camera] through exactly the float matrices
@@ -295,7 +225,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     int budget = 4;
     r->msd_allowance = 1;
     for (int j = visible - 1; j >= 0; j--)
-        if (cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
+        if (cu_frame_cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
             return 1;
     cu_profile_mark(r, CU_PASS_MAPS);
     for (int j = 0; j < visible; j++)
@@ -314,6 +244,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     cu_gpu_scene_set_sun(ctx);
     if (cu_camera_build(&ctx->camera, view, proj, v3(0, 0, 0), 1.0, err) || cu_frame_ground_shadow(r, err))
         return 1;
+    r->frame_sun = ctx->sky->sun_dir; /* the next frame's maps compare the sun with it: did it jump? */
+    r->frame_sun_valid = 1;
     cu_profile_mark(r, CU_PASS_SHADOWS);
 
     /* No cloud in view: the sky straight into the output, its tone map in the same pass (one full-screen pass, not

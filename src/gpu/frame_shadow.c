@@ -77,7 +77,7 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     if (sig == sl->shadow_sig)
         return 0;
     sl->shadow_sig = sig;
-    cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size);
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size, 0, size);
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *c = &r->clouds.slot[j];
         vec3 d;
@@ -95,9 +95,39 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     return 0;
 }
 
+/* Rows [y0, y1) of the ground's shadow map t over the square of side S about c, for the sun sd. */
+static void draw_ground(cu_renderer *r, const cu_target *t, vec3 sd, vec3 c, double S, int y0, int y1)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    int size = t->width;
+    cu_gpu_scene_set_sun(ctx);
+    ctx->sun_dir = sd;
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, t, size, y0, y1);
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0))
+            continue;
+        vec3 o = cl->cloud.origin;
+        double Rj = cl->cloud.bound_radius, D = (o.y + Rj) / sd.y + 1.0;
+        /* where its centre's shadow falls, and how far the shadow reaches (stretched by the low sun) */
+        vec3 g = v3_sub(o, v3_scale(sd, o.y / sd.y));
+        int rect[4];
+        disc_rect(g.x - c.x, g.z - c.z, Rj / sd.y, 0.5 * S, size, rect);
+        rect[1] = rect[1] > y0 ? rect[1] : y0;
+        rect[3] = rect[3] < y1 ? rect[3] : y1;
+        vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
+        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * cl->factor, origin, v3(0.5 * S, 0, 0),
+                           v3(0, 0, 0.5 * S), size, rect);
+    }
+    cu_pass_shadow_end(ctx);
+    cu_gpu_scene_set_sun(ctx); /* the sky after it: the sun now */
+}
+
 /* The clouds' shadow on the ground: their optical depth toward the sun over a square about the camera (its side
  * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), remade
- * when the clouds, the sun or the square moved. */
+ * when the clouds, the sun or the square moved: whole when there is none, the clouds or the square moved or the sun
+ * jumped; when only the sun crept, as the clouds' maps are (frame_maps.c), a band of rows a frame over
+ * quality.sun_map_frames frames into a spare, swapped in whole. */
 int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
@@ -109,44 +139,60 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     const int size = 512;
     double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
     vec3 c = v3(snap * floor(eye.x / snap + 0.5), 0, snap * floor(eye.z / snap + 0.5));
+    int jumped = !r->frame_sun_valid || v3_dot(r->frame_sun, sd) < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
     /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
-    if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * 3.14159265358979 / 180.0))
+    if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * CU_PI / 180.0))
         sd = r->ground_sun;
-    uint64_t sig = 1469598103934665603ull;
-    sig = sig_add(sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z), c.x);
-    sig = sig_add(sig_add(sig, c.z), S);
+    uint64_t scene = 1469598103934665603ull; /* the square and the clouds; sig adds the sun */
+    scene = sig_add(sig_add(sig_add(scene, c.x), c.z), S);
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *cl = &r->clouds.slot[j];
-        sig = sig_add(sig_add(sig_add(sig_add(sig, 64.0 * cl->factor), 4.0 * cl->cloud.origin.x), 4.0 * cl->cloud.origin.y),
-                      4.0 * cl->cloud.origin.z);
+        scene = sig_add(sig_add(sig_add(sig_add(scene, 64.0 * cl->factor), 4.0 * cl->cloud.origin.x),
+                                4.0 * cl->cloud.origin.y), 4.0 * cl->cloud.origin.z);
     }
+    uint64_t sig = sig_add(sig_add(sig_add(scene, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
     if (!r->ground.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground, err))
         return 1;
-    ctx->ground_tau = r->ground.tex[0];
-    ctx->ground_map = v3(c.x, c.z, S);
-    if (sig == r->ground_sig)
-        return 0;
-    r->ground_sig = sig;
-    r->ground_sun = sd;
-    cu_gpu_scene_set_sun(ctx);
-    ctx->sun_dir = sd;
-    cu_pass_shadow_begin(&r->pass_shadow, ctx, &r->ground, size);
-    for (int j = 0; j < r->clouds.n; j++) {
-        const cu_cloud_slot *cl = &r->clouds.slot[j];
-        if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0))
-            continue;
-        vec3 o = cl->cloud.origin;
-        double Rj = cl->cloud.bound_radius, D = (o.y + Rj) / sd.y + 1.0;
-        /* where its centre's shadow falls, and how far the shadow reaches (stretched by the low sun) */
-        vec3 g = v3_sub(o, v3_scale(sd, o.y / sd.y));
-        int rect[4];
-        disc_rect(g.x - c.x, g.z - c.z, Rj / sd.y, 0.5 * S, size, rect);
-        vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
-        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * cl->factor, origin, v3(0.5 * S, 0, 0),
-                           v3(0, 0, 0.5 * S), size, rect);
+    int bands = r->scene.sun_map_frames;
+    int lagged = v3_dot(r->ground_sun, sd) < cos(cu_sun_map_lag(bands) * CU_PI / 180.0);
+    /* the clouds or the square moved (the wind, every frame in a living sky): the shadow follows its clouds at once */
+    int moved = scene != r->ground_scene;
+    if (sig != r->ground_sig && (bands == 1 || !r->ground_sig || jumped || lagged || moved)) {
+        r->ground_band = 0; /* a band under way is overtaken */
+        r->ground_sig = sig;
+        r->ground_scene = scene;
+        r->ground_sun = sd;
+        r->ground_at = v3(c.x, c.z, S);
+        draw_ground(r, &r->ground, sd, c, S, 0, size);
+    } else if (sig != r->ground_sig || r->ground_band > 0) {
+        if (r->ground_band == 0) {
+            if (!r->ground_next.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground_next, err))
+                return 1;
+            r->ground_next_sig = sig;
+            r->ground_next_scene = scene;
+            r->ground_next_sun = sd;
+            r->ground_next_at = v3(c.x, c.z, S);
+        }
+        vec3 at = r->ground_next_at;
+        int b = r->ground_band++;
+        draw_ground(r, &r->ground_next, r->ground_next_sun, v3(at.x, 0, at.y), at.z, size * b / bands,
+                    size * (b + 1) / bands);
+        if (r->ground_band == bands) { /* the last band: the new map in, the old one the next spare */
+            cu_target t = r->ground;
+            r->ground = r->ground_next;
+            r->ground_next = t;
+            r->ground_sig = r->ground_next_sig;
+            r->ground_scene = r->ground_next_scene;
+            r->ground_sun = r->ground_next_sun;
+            r->ground_at = r->ground_next_at;
+            r->ground_band = 0;
+            if (sig != r->ground_sig)
+                r->maps_deferred = 1; /* the sun or the clouds moved on while the bands were drawn */
+        } else {
+            r->maps_deferred = 1; /* the picture has not settled */
+        }
     }
-    cu_pass_shadow_end(ctx);
-    cu_gpu_scene_set_sun(ctx); /* the sky after it: the sun now */
+    ctx->ground_tau = r->ground.tex[0];
+    ctx->ground_map = r->ground_at;
     return 0;
 }
-

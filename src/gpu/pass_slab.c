@@ -162,7 +162,7 @@ void cu_pass_slab_free(cu_pass_slab *p)
 
 /* Map `which`, then its mip chain: the coverage-weighted averages the shader reads at the blur's level. */
 void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
-                         cu_slab_maps *out)
+                         cu_slab_maps *out, int mipmaps)
 {
     if (!map[which].fbo)
         return;
@@ -190,7 +190,7 @@ void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int whi
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < 2 && mipmaps; i++) {
         gl->BindTexture(GL_TEXTURE_2D, map[which].tex[i]);
         gl->GenerateMipmap(GL_TEXTURE_2D);
     }

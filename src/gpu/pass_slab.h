@@ -31,7 +31,8 @@ int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, int
 void cu_pass_slab_destroy(cu_pass_slab *p, const cu_gl *gl);
 /* The tables (with the renderer). */
 void cu_pass_slab_free(cu_pass_slab *p);
-/* Renders ctx->cloud's map 0 (from the sun) or 1 (from the zenith: it depends on the cloud alone) and its mip chain. */
+/* Renders ctx->cloud's map 0 (from the sun) or 1 (from the zenith: it depends on the cloud alone), within the
+ * scissor box when the caller set one, and its mip chain when mipmaps (the last band of the map). */
 void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
-                         cu_slab_maps *out);
+                         cu_slab_maps *out, int mipmaps);
 #endif

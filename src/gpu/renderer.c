@@ -113,7 +113,10 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_slab_destroy(&r->pass_slab, gl);
     cu_pass_shadow_destroy(&r->pass_shadow, gl);
     cu_target_delete(&r->ground, gl);
+    cu_target_delete(&r->ground_next, gl);
     r->ground_sig = 0;
+    r->ground_band = 0;
+    r->frame_sun_valid = 0;
     cu_cloud_set_free(&r->clouds, gl);
     free(r->order);
     free(r->order_key);

@@ -58,6 +58,14 @@ struct cu_renderer {
     cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
     uint64_t ground_sig;
     vec3 ground_sun;      /* the sun the ground map was made for */
+    vec3 ground_at;       /* ... and its square: centre x, z and side (m) */
+    cu_target ground_next; /* quality.sun_map_frames > 1: the map made again a band of rows a frame, then swapped */
+    uint64_t ground_scene;    /* what ground_sig hashes besides the sun: the square and the clouds */
+    uint64_t ground_next_sig, ground_next_scene;
+    vec3 ground_next_sun, ground_next_at;
+    int ground_band;      /* its bands drawn so far (0: none under way) */
+    vec3 frame_sun;       /* the sun of the last frame's maps (a sun that jumped since remakes them at once) */
+    int frame_sun_valid;
 
     cu_frame_budget fb;   /* quality.target_fps, and this frame's resolution and grid (fb.d, fb.g) */
 

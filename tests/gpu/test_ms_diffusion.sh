@@ -94,11 +94,12 @@ done
 # sun turns about 0.6 degrees a frame, past a grid's 0.5 and short of the maps' 1-degree jump, so the second frame's
 # maps follow it four clouds a frame as usual but only one grid is solved again: 5 + 1 solves in two frames (9
 # without the allowance, measured). The third frame solves the fifth cloud at once (its maps are then a degree
-# behind) and one more: 8.
+# behind) and one more: 8. Whole maps every frame (quality.sun_map_frames = 1): made a band a frame, a cloud's grid is
+# solved when its last band is in, so the count would follow the bands, not the allowance this checks.
 {
   printf '[output]\nsize = 32 24\n[camera]\nposition = 0 300 0\nlook_at = 0 700 -3000\nfov = 70\n'
   printf '[sun]\ntime_utc = 2026-06-21T08:00:00Z\nlatitude = 47.37\nlongitude = 8.54\n[sky]\nmodel = constant\n'
-  printf 'color = 6 7 9\n[ms]\nmode = diffusion\ngrid = 12\n'
+  printf 'color = 6 7 9\n[ms]\nmode = diffusion\ngrid = 12\n[quality]\nsun_map_frames = 1\n'
   for x in -1500 -750 0 750 1500; do printf '[cloud]\n[ellipsoid]\ncenter = %s 900 -2600\nradii = 220 140 200\n' "$x"; done
 } > "$T/five.scene"
 for n in 2 3; do

@@ -16,11 +16,14 @@ mkfifo "$FIFO" || { t_fail soak "cannot make a fifo in $FIFO_DIR"; t_summary; ex
 # code paths (and any leak in them) are the same at any size, and the run must fit in make check.
 $C run scenes/cumulus.scene --platform headless --frames "$N" --size 64x48 --set quality.sun_map_size=64 <"$FIFO" >"$OUT/run.out" 2>"$OUT/run.err" &
 pid=$!
-# The sun walks around the sky and up and down, one command per 200 ms (each costs a sun pass), while it runs.
+# The sun walks around the sky and up and down, one command per 200 ms (each costs a sun pass), while it runs; the
+# first 20 commands of each 120 turn it a degree of azimuth at a time (0.87 degrees at 30 degrees up: a creep, whose
+# maps are made a band a frame into spares, quality.sun_map_frames), the rest jump (maps made whole at once).
 (
   i=0
   while kill -0 $pid 2>/dev/null; do
-    echo "sun $(( (i % 120) - 20 )) $(( (i * 7) % 360 ))"
+    if [ $((i % 120)) -lt 20 ]; then echo "sun 30 $((100 + i % 120))"
+    else echo "sun $(( (i % 120) - 20 )) $(( (i * 7) % 360 ))"; fi
     i=$((i + 1))
     sleep 0.2
   done

@@ -3,10 +3,13 @@
 # 14's targets: at most 0.10x and 1.2x of the still cloud view), for each preset and for the uniform ray march, on
 # the default cumulus: the cloud view; the camera turned away from the cloud (look_at behind it); the sun turned
 # 0.01 degree every frame (cumulo bench --sun-every-frame: a slow knob, or the time of day; the maps follow it every
-# fifth frame) and 0.6 degree every frame (--sun-step 0.6: a knob turned fast, 18 degrees a second at 30 fps; every
-# frame remakes the maps, and a diffusion grid is solved again every frame). 20 frames after 5 warm-up ones (a cheap
-# frame's first few run slower: llvmpipe's threads and caches warming). Rounds interleaved (every case once a round),
-# medians over rounds, ratios to the cloud view in the same run. Prints a Markdown table.
+# fifth frame) and 0.6 degree every frame (--sun-step 0.6: a knob turned fast, 18 degrees a second at 30 fps; the maps
+# are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every frame).
+# Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads and
+# caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
+# closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as before
+# the bands; "low, sun_map_frames = 8" spreads them over 8 frames. Rounds interleaved (every case once a round), medians over rounds, ratios to the cloud view in the same
+# run. Prints a Markdown table.
 # Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
 set -eu
 ROUNDS=${1:-3}
@@ -16,12 +19,14 @@ S=scenes/cumulus.scene
 T=${TMPDIR:-/tmp}/cumulo-fc-bench.$$
 mkdir -p "$T"
 trap 'rm -rf "$T"' EXIT
-CONFIGS="high medium low diffusion uniform"
+CONFIGS="high medium low low8 whole diffusion uniform"
 sets() {
   case $1 in
     uniform) echo "--set quality.method=uniform --set ms.mode=octaves --set quality.uniform_steps=16 \
 --set quality.uniform_sun_steps=4 --set quality.noise_baked=on" ;;
     diffusion) echo "--set quality.preset=medium --set ms.mode=diffusion" ;;
+    whole) echo "--set quality.preset=medium --set quality.sun_map_frames=1" ;;
+    low8) echo "--set quality.preset=low --set quality.sun_map_frames=8" ;;
     *) echo "--set quality.preset=$1" ;;
   esac
 }
@@ -31,7 +36,7 @@ time_of() { # CONFIG CASE; the empty view looks away from the cloud (it is behin
     sun) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-every-frame ;;
     fast) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-step 0.6 ;;
     *) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") ;;
-  esac | sed -n 's/.*FrameTime: \([0-9.]*\) ms.*/\1/p' | head -1
+  esac | sed -n 's/.*FrameTime: .* mean: \([0-9.]*\) ms.*/\1/p' | head -1
 }
 r=1
 while [ "$r" -le "$ROUNDS" ]; do
@@ -52,6 +57,8 @@ for c in $CONFIGS; do
   label=$c
   [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
   [ "$c" = diffusion ] && label="medium, ms.mode = diffusion"
+  [ "$c" = whole ] && label="medium, sun_map_frames = 1"
+  [ "$c" = low8 ] && label="low, sun_map_frames = 8"
   printf '| %s | %s | %s | %.2f | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" \
     "$(echo "$b $a" | awk '{print $1/$2}')" "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$f" \
     "$(echo "$f $a" | awk '{print $1/$2}')"
