@@ -125,9 +125,9 @@ static void draw_ground(cu_renderer *r, const cu_target *t, vec3 sd, vec3 c, dou
 
 /* The clouds' shadow on the ground: their optical depth toward the sun over a square about the camera (its side
  * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), remade
- * when the clouds, the sun or the square moved: whole when there is none, the clouds or the square moved or the sun
- * jumped; when only the sun crept, as the clouds' maps are (frame_maps.c), a band of rows a frame over
- * quality.sun_map_frames frames into a spare, swapped in whole. */
+ * when the clouds, the sun or the square moved: whole when there is none, the clouds moved, the camera jumped or the
+ * sun jumped; when the sun crept or the camera moved on, as the clouds' maps are (frame_maps.c), a band of rows a
+ * frame over quality.sun_map_frames frames into a spare, swapped in whole. */
 int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
@@ -143,20 +143,23 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
     if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * CU_PI / 180.0))
         sd = r->ground_sun;
-    uint64_t scene = 1469598103934665603ull; /* the square and the clouds; sig adds the sun */
-    scene = sig_add(sig_add(sig_add(scene, c.x), c.z), S);
+    uint64_t scene = 1469598103934665603ull; /* the clouds; sig adds the square and the sun */
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *cl = &r->clouds.slot[j];
         scene = sig_add(sig_add(sig_add(sig_add(scene, 64.0 * cl->factor), 4.0 * cl->cloud.origin.x),
                                 4.0 * cl->cloud.origin.y), 4.0 * cl->cloud.origin.z);
     }
-    uint64_t sig = sig_add(sig_add(sig_add(scene, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
+    uint64_t sig = sig_add(sig_add(sig_add(scene, c.x), c.z), S);
+    sig = sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
     if (!r->ground.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground, err))
         return 1;
     int bands = r->scene.sun_map_frames;
     int lagged = v3_dot(r->ground_sun, sd) < cos(cu_sun_map_lag(bands) * CU_PI / 180.0);
-    /* the clouds or the square moved (the wind, every frame in a living sky): the shadow follows its clouds at once */
-    int moved = scene != r->ground_scene;
+    /* the clouds moved (the wind, every frame in a living sky): the shadow follows its clouds at once; so it does when
+     * the camera jumped a quarter of the square (the old map would miss the ground in view). A camera flying on
+     * moves the square a sixteenth at a time: the old square still holds all but the far edge of the new one. */
+    int moved = scene != r->ground_scene ||
+                hypot(c.x - r->ground_at.x, c.z - r->ground_at.y) > 0.25 * S || fabs(S - r->ground_at.z) > 0.25 * S;
     if (sig != r->ground_sig && (bands == 1 || !r->ground_sig || jumped || lagged || moved)) {
         r->ground_band = 0; /* a band under way is overtaken */
         r->ground_sig = sig;

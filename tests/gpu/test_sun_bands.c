@@ -3,8 +3,9 @@
  * at that sun, the energy closure off so that nothing else remembers the path): the picture a moving sun settles to
  * is the whole render bit for bit, within 2K frames; while the sun turns, every frame draws exactly one band of the
  * cloud's maps and of the ground's shadow, the cloud is lit by a sun at most (2K - 1) steps behind, and the picture
- * is as far from the exact one as the exact picture of the maps' sun; a creeping sun does not pop; a jump of the sun remakes the maps in that frame; with
- * K = 1 every frame is the whole render of its own sun. */
+ * is as far from the exact one as the exact picture of the maps' sun; a creeping sun does not pop; a jump of the sun
+ * remakes the maps in that frame; with K = 1 every frame is the whole render of its own sun; a camera flying on has
+ * the ground's shadow made in bands and settles to the whole render too. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,6 +16,7 @@
 #include <string.h>
 #include "render_util.h"
 #include "renderer.h"
+#include "scene.h"
 
 #define W 96
 #define H 72
@@ -217,6 +219,73 @@ static void test_creeping_sun_does_not_pop(void **st)
     tr_close(&c);
 }
 
+/* Renders the current scene from the camera at (x, y, z) looking at (lx, ly, lz), through host matrices: the renderer
+ * keeps its maps (a new scene would start over). */
+static void frame_from(tr_ctx *c, const double pos[3], const double look[3])
+{
+    cu_scene *s;
+    cu_error e;
+    char p[96], l[96];
+    snprintf(p, sizeof p, "camera.position=%.9g %.9g %.9g", pos[0], pos[1], pos[2]);
+    snprintf(l, sizeof l, "camera.look_at=%.9g %.9g %.9g", look[0], look[1], look[2]);
+    if (cu_scene_load(&s, "scenes/cumulus.scene", &e) || cu_scene_set(s, p, &e) || cu_scene_set(s, l, &e))
+        fail_msg("%s", e.msg);
+    float view[16], proj[16];
+    unsigned fbo;
+    int w, h;
+    if (cu_scene_camera_matrices(s, (double)W / H, 1.0, 2.0, view, proj, &e))
+        fail_msg("%s", e.msg);
+    c->be->frame(c->disp, &fbo, &w, &h);
+    cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = c->linear, .view = view, .projection = proj};
+    if (cu_render(c->r, &f, &e))
+        fail_msg("%s", e.msg);
+    cu_scene_free(s);
+}
+
+/* A camera flying on at 100 m above the ground moves the ground's shadow square (8 km, re-centred every 500 m): the
+ * new square's map is made a band a frame, and when the camera stops the picture settles to the whole render from
+ * there, bit for bit. */
+static void test_flying_camera_settles(void **st)
+{
+    (void)st;
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    float *got = malloc(sizeof(float) * NPX * 2), *ref = got + NPX;
+    static const char *const sets[] = {"ms.closure=off", "quality.sun_map_frames=4", NULL};
+    double pos[3] = {-600, 100, -1600}, look[3] = {-600, 0, -200};
+    if (tr_render(&c, "scenes/cumulus.scene", sets))
+        fail_msg("%s", c.err);
+    int banded = 0;
+    for (int k = 0; k <= 8; k++) {
+        pos[0] = look[0] = -600 + 150.0 * k;
+        frame_from(&c, pos, look);
+        banded += c.r->ground_band > 0;
+    }
+    int settled_after = -1;
+    for (int f = 1; f <= 8 && settled_after < 0; f++) {
+        frame_from(&c, pos, look);
+        if (cu_renderer_settled(c.r))
+            settled_after = f;
+    }
+    tr_read_rgbf(&c, got);
+    char p[96], l[96];
+    snprintf(p, sizeof p, "camera.position=%.9g %.9g %.9g", pos[0], pos[1], pos[2]);
+    snprintf(l, sizeof l, "camera.look_at=%.9g %.9g %.9g", look[0], look[1], look[2]);
+    const char *whole[] = {"ms.closure=off", "quality.sun_map_frames=1", p, l, NULL};
+    if (tr_render(&c, "scenes/cumulus.scene", whole))
+        fail_msg("%s", c.err);
+    tr_read_rgbf(&c, ref);
+    double d = rel_diff(got, ref);
+    printf("flying 150 m a frame: %d frames with a ground band under way; settled after %d frames; against the whole "
+           "render %.3g\n", banded, settled_after, d);
+    assert_true(banded >= 3);
+    assert_true(settled_after > 0 && settled_after <= 8);
+    assert_true(d == 0.0);
+    free(got);
+    tr_close(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -224,6 +293,7 @@ int main(void)
         cmocka_unit_test(test_jump_remakes_at_once),
         cmocka_unit_test(test_one_frame_maps_follow_every_frame),
         cmocka_unit_test(test_creeping_sun_does_not_pop),
+        cmocka_unit_test(test_flying_camera_settles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
