@@ -38,8 +38,8 @@ int run_clock_option(cu_clock_ctl *ctl, const char *opt, const char *v)
 }
 
 /* Sets the sun for the second the clock shows now, when it is another than the one it was set for (force: always).
- * A second moves the sun 0.004 degrees, too little to see, while every move redraws each cloud's sun and slab maps
- * (cloud_maps in src/gpu/renderer.c): following the clock every frame would redraw them every frame. The angles are
+ * A second moves the sun 0.004 degrees, too little to see, while moves redraw each cloud's sun and slab maps
+ * (src/gpu/frame_maps.c): following the clock every frame would keep redrawing them. The angles are
  * taken here rather than through cu_renderer_set_sun_utc, which ties the sun to the scene time: that runs the clouds
  * at 1x while --time-scale runs the clock faster, and it would move the sun every frame. Returns 1 when it was set. */
 static int aim(run_clock *c, cu_renderer *r, int force)
