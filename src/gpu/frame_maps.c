@@ -162,7 +162,8 @@ int cu_frame_cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error
     int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
     int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
     int jumped = r->frame_sun_valid && v3_dot(r->frame_sun, sun) < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
-    if (!sl->maps_valid || !sl->zenith_valid || jumped || c < cos(cu_sun_map_lag(r->scene.sun_map_frames) * CU_PI / 180.0))
+    int lagged = c < cos(cu_sun_map_lag(r->scene.sun_map_frames) * CU_PI / 180.0);
+    if (!sl->maps_valid || !sl->zenith_valid || jumped || lagged)
         return remake_whole(r, sl, boiled, 1, err);
     if (!boiled && !crept && sl->next_band == 0) /* up to date; a grid a busier frame left behind catches up */
         return ctx->ms_mode == CU_MS_DIFFUSION &&

@@ -43,7 +43,8 @@ while [ "$r" -le "$ROUNDS" ]; do
 done
 med() { awk -v s="$1" -v k="$2" '$1 == s && $2 == k { print $3 }' "$T/all" | sort -n |
         awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
-echo "| scene | other build's medium, ms | this build's medium, ms | speed-up | this build's medium at 1/2 × grid 4, ms" \
+echo "| scene | other build's medium, ms | this build's medium, ms | speed-up |" \
+  "this build's medium at 1/2 × grid 4, ms" \
   "| speed-up |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: |"
 for s in $SCENES; do

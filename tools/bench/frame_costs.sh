@@ -5,11 +5,11 @@
 # 0.01 degree every frame (cumulo bench --sun-every-frame: a slow knob, or the time of day; the maps follow it every
 # fifth frame) and 0.6 degree every frame (--sun-step 0.6: a knob turned fast, 18 degrees a second at 30 fps; the maps
 # are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every frame).
-# Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads and
-# caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
-# closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as before
-# the bands; "low, sun_map_frames = 8" spreads them over 8 frames. Rounds interleaved (every case once a round), medians over rounds, ratios to the cloud view in the same
-# run. Prints a Markdown table.
+# Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads
+# and caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
+# closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as
+# before the bands; "low, sun_map_frames = 8" spreads them over 8 frames. Rounds interleaved (every case once a
+# round), medians over rounds, ratios to the cloud view in the same run. Prints a Markdown table.
 # Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
 set -eu
 ROUNDS=${1:-3}
