@@ -43,8 +43,9 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 # gpu: renders through both headless back ends against references, closed forms and the CPU (test_sky: the sky pass
 # against the CPU's Preetham model; test_temporal: the temporal grid against whole frames; test_composite: the
 # one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render;
-# test_sun_bands: a creeping sun's maps made a band a frame against whole maps).
-$(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands,\
+# test_sun_bands: a creeping sun's maps made a band a frame against whole maps; test_ground_drift: the ground's
+# shadow following clouds on the wind against whole renders).
+$(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
@@ -72,7 +73,8 @@ $(eval $(call test_program,test_sky_field,tests/gpu/test_sky_field.c $(HEADLESS)
 
 # app: the cumulo program's command line.
 CHECK_TESTS += tests/app/test_cli.sh tests/app/test_sky_cli.sh
-CHECK_TESTS += tests/app/test_sun_cli.sh tests/app/test_sweep_methods.sh tests/app/test_sweep_fit.sh
+CHECK_TESTS += tests/app/test_sun_cli.sh tests/app/test_sweep_methods.sh tests/app/test_sweep_fit.sh \
+  tests/app/test_sweep_score.sh
 # The sweep's cloud metrics (tools/sweep/metrics.c) on images whose answers are known; no GL.
 $(eval $(call test_program,test_sweep_metrics,tests/sweep/test_sweep_metrics.c tools/sweep/metrics.c $(CORE),\
   -Itools/sweep,$(LIB_LIBS)))

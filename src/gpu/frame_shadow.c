@@ -4,15 +4,19 @@
 #include <math.h>
 #include <stdint.h>
 
-/* FNV-1a over what a shadow map depends on, so it is remade only when that changed. */
-static uint64_t sig_add(uint64_t h, double v)
+/* FNV-1a over what a shadow map depends on, so it is remade only when that changed: 64 bits, then a value rounded. */
+static uint64_t sig_bits(uint64_t h, uint64_t q)
 {
-    int64_t q = (int64_t)llround(v);
     for (int i = 0; i < 8; i++) {
-        h ^= (uint64_t)(q >> (8 * i)) & 0xff;
+        h ^= (q >> (8 * i)) & 0xff;
         h *= 1099511628211ull;
     }
     return h;
+}
+
+static uint64_t sig_add(uint64_t h, double v)
+{
+    return sig_bits(h, (uint64_t)llround(v));
 }
 
 /* The texels [x0, x1) x [y0, y1) of a size-texel map of half-side R about 0 that a disc of radius rad at (u, v)
@@ -123,11 +127,50 @@ static void draw_ground(cu_renderer *r, const cu_target *t, vec3 sd, vec3 c, dou
     cu_gpu_scene_set_sun(ctx); /* the sky after it: the sun now */
 }
 
+/* Where the wind has carried the clouds by now, when they all ride one wind (a layer's clouds do; zero when winds
+ * differ or there is none). The ground's shadow map is made in a frame drifting with it: a shadow follows its cloud
+ * by where the map is read, not by making the map again every frame the clouds move. */
+static vec3 common_drift(const cu_renderer *r)
+{
+    vec3 w = v3(0, 0, 0);
+    int any = 0;
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0)
+            continue;
+        if (any && (cl->wind.x != w.x || cl->wind.y != w.y || cl->wind.z != w.z))
+            return v3(0, 0, 0);
+        w = cl->wind;
+        any = 1;
+    }
+    return v3_scale(w, r->time);
+}
+
+/* What the square of side S about c (x, z in the drifting frame) shows of the clouds for the sun sd: the positions
+ * (in that frame) of the clouds whose shadows can reach it, and their densities. A cloud elsewhere in the layer
+ * cannot change a texel of the map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
+static void ground_hashes(const cu_renderer *r, vec3 drift, vec3 sd, vec3 c, double S, uint64_t *pos, uint64_t *dens)
+{
+    *pos = *dens = 1469598103934665603ull;
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || !(cl->ke_rest > 0))
+            continue;
+        vec3 o = v3_sub(cl->cloud.origin, drift), g = v3_sub(o, v3_scale(sd, o.y / sd.y));
+        double reach = 0.5 * S + cl->cloud.bound_radius / sd.y;
+        if (fabs(g.x - c.x) > reach || fabs(g.z - c.z) > reach)
+            continue;
+        *pos = sig_add(sig_add(sig_add(sig_add(*pos, j), 4.0 * o.x + 0.382), 4.0 * o.y + 0.382), 4.0 * o.z + 0.382);
+        *dens = sig_add(sig_add(*dens, j), 64.0 * cl->factor);
+    }
+}
+
 /* The clouds' shadow on the ground: their optical depth toward the sun over a square about the camera (its side
- * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), remade
- * when the clouds, the sun or the square moved: whole when there is none, the clouds moved, the camera jumped or the
- * sun jumped; when the sun crept or the camera moved on, as the clouds' maps are (frame_maps.c), a band of rows a
- * frame over quality.sun_map_frames frames into a spare, swapped in whole. */
+ * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), in a frame
+ * drifting with the clouds' common wind. Remade whole when there is none, a cloud moved in that frame (the shadow
+ * must follow it at once: clouds on different winds do every frame), the camera jumped or the sun jumped; when the
+ * sun crept, the camera moved the square on or a cloud's density changed (its life cycle), as the clouds' maps are
+ * (frame_maps.c), a band of rows a frame over quality.sun_map_frames frames into a spare, swapped in whole. */
 int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
@@ -137,49 +180,48 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     if (!r->shadows || r->scene.sky_model == CU_SKY_CONSTANT || sd.y < 0.02 || ctx->camera.ortho || eye.y <= 0)
         return 0;
     const int size = 512;
+    vec3 drift = common_drift(r), e = v3_sub(eye, drift);
     double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
-    vec3 c = v3(snap * floor(eye.x / snap + 0.5), 0, snap * floor(eye.z / snap + 0.5));
+    vec3 c = v3(snap * floor(e.x / snap + 0.5), 0, snap * floor(e.z / snap + 0.5)); /* in the drifting frame */
     int jumped = !r->frame_sun_valid || v3_dot(r->frame_sun, sd) < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
     /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
     if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * CU_PI / 180.0))
         sd = r->ground_sun;
-    uint64_t scene = 1469598103934665603ull; /* the clouds; sig adds the square and the sun */
-    for (int j = 0; j < r->clouds.n; j++) {
-        const cu_cloud_slot *cl = &r->clouds.slot[j];
-        scene = sig_add(sig_add(sig_add(sig_add(scene, 64.0 * cl->factor), 4.0 * cl->cloud.origin.x),
-                                4.0 * cl->cloud.origin.y), 4.0 * cl->cloud.origin.z);
-    }
-    uint64_t sig = sig_add(sig_add(sig_add(scene, c.x), c.z), S);
+    uint64_t pos, dens;
+    ground_hashes(r, drift, sd, c, S, &pos, &dens);
+    uint64_t sig = sig_add(sig_add(sig_add(sig_bits(pos, dens), c.x), c.z), S);
     sig = sig_add(sig_add(sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
     if (!r->ground.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground, err))
         return 1;
     int bands = r->scene.sun_map_frames;
     int lagged = v3_dot(r->ground_sun, sd) < cos(cu_sun_map_lag(bands) * CU_PI / 180.0);
-    /* the clouds moved (the wind, every frame in a living sky): the shadow follows its clouds at once; so it does when
-     * the camera jumped a quarter of the square (the old map would miss the ground in view). A camera flying on
-     * moves the square a sixteenth at a time: the old square still holds all but the far edge of the new one. */
-    int moved = scene != r->ground_scene ||
-                hypot(c.x - r->ground_at.x, c.z - r->ground_at.y) > 0.25 * S || fabs(S - r->ground_at.z) > 0.25 * S;
+    /* A cloud moved in the drifting frame over the same square: its shadow follows at once; so it does when the
+     * camera jumped a quarter of the square (the old map would miss the ground in view). A camera flying on moves the
+     * square a sixteenth at a time: the old square still holds all but the far edge of the new one. */
+    vec3 at = r->ground_at;
+    int same_square = c.x == at.x && c.z == at.y && S == at.z;
+    int moved = (same_square && pos != r->ground_scene) || hypot(c.x - at.x, c.z - at.y) > 0.25 * S ||
+                fabs(S - at.z) > 0.25 * S;
     if (sig != r->ground_sig && (bands == 1 || !r->ground_sig || jumped || lagged || moved)) {
         r->ground_band = 0; /* a band under way is overtaken */
         r->ground_sig = sig;
-        r->ground_scene = scene;
+        r->ground_scene = pos;
         r->ground_sun = sd;
         r->ground_at = v3(c.x, c.z, S);
-        draw_ground(r, &r->ground, sd, c, S, 0, size);
+        draw_ground(r, &r->ground, sd, v3_add(c, drift), S, 0, size);
     } else if (sig != r->ground_sig || r->ground_band > 0) {
         if (r->ground_band == 0) {
             if (!r->ground_next.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground_next, err))
                 return 1;
             r->ground_next_sig = sig;
-            r->ground_next_scene = scene;
+            r->ground_next_scene = pos;
             r->ground_next_sun = sd;
             r->ground_next_at = v3(c.x, c.z, S);
         }
-        vec3 at = r->ground_next_at;
+        vec3 nat = r->ground_next_at;
         int b = r->ground_band++;
-        draw_ground(r, &r->ground_next, r->ground_next_sun, v3(at.x, 0, at.y), at.z, size * b / bands,
-                    size * (b + 1) / bands);
+        draw_ground(r, &r->ground_next, r->ground_next_sun, v3(nat.x + drift.x, 0, nat.y + drift.z), nat.z,
+                    size * b / bands, size * (b + 1) / bands);
         if (r->ground_band == bands) { /* the last band: the new map in, the old one the next spare */
             cu_target t = r->ground;
             r->ground = r->ground_next;
@@ -196,6 +238,6 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
         }
     }
     ctx->ground_tau = r->ground.tex[0];
-    ctx->ground_map = r->ground_at;
+    ctx->ground_map = v3(r->ground_at.x + drift.x, r->ground_at.y + drift.z, r->ground_at.z);
     return 0;
 }

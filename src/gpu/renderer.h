@@ -60,7 +60,7 @@ struct cu_renderer {
     vec3 ground_sun;      /* the sun the ground map was made for */
     vec3 ground_at;       /* ... and its square: centre x, z and side (m) */
     cu_target ground_next; /* quality.sun_map_frames > 1: the map made again a band of rows a frame, then swapped */
-    uint64_t ground_scene;    /* what ground_sig hashes besides the square and the sun: the clouds */
+    uint64_t ground_scene;    /* the positions of the clouds that shade its square, in the frame drifting with them */
     uint64_t ground_next_sig, ground_next_scene;
     vec3 ground_next_sun, ground_next_at;
     int ground_band;      /* its bands drawn so far (0: none under way) */

@@ -73,6 +73,16 @@ int tr_render(tr_ctx *c, const char *scene, const char *const *sets)
     return rc;
 }
 
+double tr_rel_diff(const float *a, const float *b, size_t n)
+{
+    double d = 0, top = 0;
+    for (size_t i = 0; i < n; i++) {
+        d = fmax(d, fabs(a[i] - b[i]));
+        top = fmax(top, b[i]);
+    }
+    return d / top;
+}
+
 int tr_read_rgbf(tr_ctx *c, float *rgb)
 {
     return cli_session_read_rgbf(&c->s, rgb);

@@ -41,6 +41,8 @@ typedef struct tr_diff {
     double psnr;         /* dB over RGB */
 } tr_diff;
 tr_diff tr_compare_rgba8(const uint8_t *a, const uint8_t *b, int w, int h, int threshold);
+/* The largest absolute difference of two linear images of n floats, relative to b's brightest value. */
+double tr_rel_diff(const float *a, const float *b, size_t n);
 /* Writes result, reference and an amplified difference image under build/test-output/<name>-*.png. */
 void tr_save_failure(const char *name, const uint8_t *got, const uint8_t *ref, int w, int h);
 #endif

@@ -30,15 +30,9 @@
 #define VIEW "camera.position=700 900 -1300", "camera.look_at=0 80 -250", "cloud.lifetime=1000", "cloud.life_phase=0.1"
 static const char *const sets_k4[] = {"ms.closure=off", "quality.sun_map_frames=4", VIEW, NULL};
 
-/* The largest absolute difference of two linear images, relative to b's brightest value. */
 static double rel_diff(const float *a, const float *b)
 {
-    double d = 0, top = 0;
-    for (size_t i = 0; i < NPX; i++) {
-        d = fmax(d, fabs(a[i] - b[i]));
-        top = fmax(top, b[i]);
-    }
-    return d / top;
+    return tr_rel_diff(a, b, NPX);
 }
 
 /* The whole render of a fresh scene at sun (el, az), with `frames` (quality.sun_map_frames) as given. */
