@@ -8,7 +8,7 @@ T=build/test-output/sweep_fit
 rm -rf "$T"; mkdir -p "$T"
 
 t_expect "--fit-octaves takes no value" 2 "takes no value" -- $S --fit-octaves=1
-t_expect "--fit-octaves with --methods is refused" 2 "two different runs" -- $S --fit-octaves --methods
+t_expect "--fit-octaves with --methods is refused" 2 "different runs" -- $S --fit-octaves --methods
 
 # 24x18, 4 spp: the bookkeeping, not the fit's quality (make fit-octaves runs the real one).
 $S --fit-octaves --scenes scenes/fit/sphere_side.scene --size 24x18 --spp 4 --out "$T" --ref-dir "$T/ref" \

@@ -54,6 +54,9 @@ static const char HELP[] =
     "  --fit-octaves        instead of the knobs: fit the octave model of multiple scattering (ms.octaves, ms.a, ms.b,\n"
     "                       ms.c) to the path tracer by coordinate descent on the cloud's pixels, error only; writes\n"
     "                       DIR/fit.md, fit.csv, fit.txt (default views the training scenes in scenes/fit/, 1024 spp)\n"
+    "  --score DIR          instead of the knobs: score DIR/NAME.pfm of every view (linear radiance at --size,\n"
+    "                       rendered elsewhere: another build's `cumulo render SCENE --size WxH -o DIR/NAME.pfm`,\n"
+    "                       another renderer) against the references with the sweep's metrics; writes OUT/score.md\n"
     "  -h, --help           this help, then exit\n"
     "  -V, --version        the version, then exit\n"
     "\n"
@@ -61,7 +64,7 @@ static const char HELP[] =
     "Run it from the source tree (scenes/, data/, scripts/sweep_plot.sh); `make sweep` runs it with the defaults.\n";
 
 enum { O_SCENES = 256, O_OUT, O_REFDIR, O_BASELINE, O_SIZE, O_TSIZE, O_SPP, O_PTTHREADS, O_FRAMES, O_WARMUP,
-       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY, O_METHODS, O_FIT };
+       O_THRESHOLD, O_BUDGETS, O_QUICK, O_SUN, O_REFSONLY, O_METHODS, O_FIT, O_SCORE };
 
 static const struct option LONG[] = {
     {"scenes", required_argument, NULL, O_SCENES},       {"out", required_argument, NULL, O_OUT},
@@ -72,7 +75,7 @@ static const struct option LONG[] = {
     {"threshold", required_argument, NULL, O_THRESHOLD}, {"budgets", required_argument, NULL, O_BUDGETS},
     {"quick", no_argument, NULL, O_QUICK},               {"sun-every-frame", no_argument, NULL, O_SUN},
     {"refs-only", no_argument, NULL, O_REFSONLY},        {"methods", no_argument, NULL, O_METHODS},
-    {"fit-octaves", no_argument, NULL, O_FIT},
+    {"fit-octaves", no_argument, NULL, O_FIT},          {"score", required_argument, NULL, O_SCORE},
     {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, 'V'},                 {NULL, 0, NULL, 0},
 };
@@ -247,6 +250,11 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
         case O_FIT:
             sw->fit = 1;
             break;
+        case O_SCORE:
+            if (!*v)
+                return bad("--score expects a directory of NAME.pfm images");
+            sw->score = v;
+            break;
         default:
             return bad("unknown option '%s' (see --help)", argv[optind - 1]);
         }
@@ -266,8 +274,8 @@ int sw_parse_options(sweep *sw, int argc, char **argv)
             sw->frames = 3;
         sw->warmup = sw->warmup < 1 ? sw->warmup : 1;
     }
-    if (sw->methods && sw->fit)
-        return bad("--methods and --fit-octaves are two different runs: give one");
+    if (sw->methods + sw->fit + (sw->score != NULL) > 1)
+        return bad("--methods, --fit-octaves and --score are different runs: give one");
     if (sw->fit) {
         if (!scenes)
             scenes = FIT_SCENES;

@@ -164,6 +164,8 @@ int sw_run(sweep *sw)
         return 1;
     if (sw->refs_only)
         return 0;
+    if (sw->score)
+        return sw_score_run(sw, sw->score);
     if (sw->methods)
         return sw_methods_run(sw);
     if (sw->fit)

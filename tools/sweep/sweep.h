@@ -104,6 +104,7 @@ typedef struct sweep {
     int refs_only;
     int methods;           /* --methods: Kol's method against the uniform ray march (methods.c) */
     int fit;               /* --fit-octaves: the octave model fitted to the path tracer (fit.c) */
+    const char *score;     /* --score DIR: images rendered elsewhere scored against the references (score.c) */
     double budget_med, budget_low;
     const char *out, *refdir, *plot, *baseline;
     int nviews;
@@ -164,6 +165,9 @@ int sw_methods_run(sweep *sw);
 /* The view's cloud mask (v->mask, mask_n, ref_contrast): its sky alone (every cloud's density 0) rendered at the
  * error size, against the reference. 0, or 1 with a message. */
 int sw_view_cloud_mask(sweep *sw, view *v);
+/* ---- score.c ---- */
+/* --score: DIR/NAME.pfm of every view against its reference; writes sw->out/score.md. 0, or 1 (printed). */
+int sw_score_run(sweep *sw, const char *dir);
 
 /* ---- fit.c ---- */
 /* cumulo-sweep --fit-octaves: the octave model's count and factors fitted to the views' references; writes fit.csv,

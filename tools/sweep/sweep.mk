@@ -3,7 +3,7 @@
 # the plot, the table, the presets and the CSV to docs/. Not part of `make check`. SWEEP_ARGS adds options.
 # The sweep links the path tracer (tools/pathtrace/pt.o) and renders its references in-process.
 SWEEP_SRCS := $(addprefix tools/sweep/,main.c options.c knobs.c reference.c metrics.c measure.c choose.c report.c \
-              sweep.c methods.c fit.c)
+              sweep.c methods.c fit.c score.c)
 SWEEP_OBJS := $(SWEEP_SRCS:%.c=$(B)/obj/%.o)
 CFLAGS_SWEEP := $(CFLAGS_BASE) -Iinclude -Isrc/core -Iapp -Itools/pathtrace $(PLATFORM_CPPFLAGS) -I$(B)/gen \
                 $(LIB_CFLAGS)
