@@ -58,6 +58,11 @@ static inline double cu_sun_map_lag(int frames)
 {
     return (2 * frames - 1) * CU_SUN_MAP_JUMP;
 }
+/* Whether the unit directions a and b lie more than `degrees` apart (what every map's sun is tested by). */
+static inline int cu_sun_apart(vec3 a, vec3 b, double degrees)
+{
+    return v3_dot(a, b) < cos(degrees * CU_PI / 180.0);
+}
 
 typedef struct cu_cloud_set {
     cu_cloud_slot *slot;

@@ -135,7 +135,7 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
     sl->maps_sun = sl->next_sun;
     sl->maps_boil = sl->next_boil;
     r->sun_dirty = 1; /* the energy closure follows the maps' sun (it keeps its gains within a degree of it) */
-    if (v3_dot(sl->maps_sun, ctx->sky->sun_dir) < cos(CU_SUN_MAP_STEP * CU_PI / 180.0) ||
+    if (cu_sun_apart(sl->maps_sun, ctx->sky->sun_dir, CU_SUN_MAP_STEP) ||
         v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP)
         r->maps_deferred = 1; /* the sun or the noise moved on while the bands were drawn: more to come */
     cu_frame_bind_cloud(r, sl); /* its new maps, for the diffusion grid */
@@ -158,11 +158,10 @@ int cu_frame_cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error
     if (r->scene.method == CU_METHOD_UNIFORM)
         return 0;
     vec3 sun = ctx->sky->sun_dir;
-    double c = v3_dot(sl->maps_sun, sun);
     int boiled = v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP;
-    int crept = c < cos(CU_SUN_MAP_STEP * CU_PI / 180.0);
-    int jumped = r->frame_sun_valid && v3_dot(r->frame_sun, sun) < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
-    int lagged = c < cos(cu_sun_map_lag(r->scene.sun_map_frames) * CU_PI / 180.0);
+    int crept = cu_sun_apart(sl->maps_sun, sun, CU_SUN_MAP_STEP);
+    int jumped = r->frame_sun_valid && cu_sun_apart(r->frame_sun, sun, CU_SUN_MAP_JUMP);
+    int lagged = cu_sun_apart(sl->maps_sun, sun, cu_sun_map_lag(r->scene.sun_map_frames));
     if (!sl->maps_valid || !sl->zenith_valid || jumped || lagged)
         return remake_whole(r, sl, boiled, 1, err);
     if (!boiled && !crept && sl->next_band == 0) /* up to date; a grid a busier frame left behind catches up */

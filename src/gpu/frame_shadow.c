@@ -183,9 +183,9 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     vec3 drift = common_drift(r), e = v3_sub(eye, drift);
     double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
     vec3 c = v3(snap * floor(e.x / snap + 0.5), 0, snap * floor(e.z / snap + 0.5)); /* in the drifting frame */
-    int jumped = !r->frame_sun_valid || v3_dot(r->frame_sun, sd) < cos(CU_SUN_MAP_JUMP * CU_PI / 180.0);
+    int jumped = !r->frame_sun_valid || cu_sun_apart(r->frame_sun, sd, CU_SUN_MAP_JUMP);
     /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
-    if (r->ground_sig && v3_dot(r->ground_sun, sd) > cos(CU_SUN_MAP_STEP * CU_PI / 180.0))
+    if (r->ground_sig && !cu_sun_apart(r->ground_sun, sd, CU_SUN_MAP_STEP))
         sd = r->ground_sun;
     uint64_t pos, dens;
     ground_hashes(r, drift, sd, c, S, &pos, &dens);
@@ -194,7 +194,7 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     if (!r->ground.fbo && cu_pass_shadow_target(&r->gl, size, &r->ground, err))
         return 1;
     int bands = r->scene.sun_map_frames;
-    int lagged = v3_dot(r->ground_sun, sd) < cos(cu_sun_map_lag(bands) * CU_PI / 180.0);
+    int lagged = cu_sun_apart(r->ground_sun, sd, cu_sun_map_lag(bands));
     /* A cloud moved in the drifting frame over the same square: its shadow follows at once; so it does when the
      * camera jumped a quarter of the square (the old map would miss the ground in view). A camera flying on moves the
      * square a sixteenth at a time: the old square still holds all but the far edge of the new one. */
