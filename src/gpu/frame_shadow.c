@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdint.h>
 
+#define GROUND_TEXELS 512 /* the ground's shadow map, a side */
+
 /* FNV-1a over what a shadow map depends on, so it is remade only when that changed: 64 bits, then a value rounded. */
 static uint64_t sig_bits(uint64_t h, uint64_t q)
 {
@@ -19,15 +21,26 @@ static uint64_t sig_add(uint64_t h, double v)
     return sig_bits(h, (uint64_t)llround(v));
 }
 
-/* The texels [x0, x1) x [y0, y1) of a size-texel map of half-side R about 0 that a disc of radius rad at (u, v)
- * (metres on the map's axes) covers. */
-static void disc_rect(double u, double v, double rad, double R, int size, int rect[4])
+/* The texels [x0, x1) x [y0, y1) of a size-texel map of half-side R about its centre (axes ax, ay on the plane of
+ * normal n through it) that cloud cl can shade along the sun sd, its origin at rel from the centre: where the
+ * corners of the cloud's box fall along sd. Tighter than its bounding sphere's disc for the wide, flat clouds of a
+ * layer (a third of the texels on field_noon's ground), and as conservative: no ray outside it meets an ellipsoid. */
+static void box_rect(const cu_cloud *cl, vec3 rel, vec3 sd, vec3 n, vec3 ax, vec3 ay, double R, int size,
+                     int rect[4])
 {
-    double k = 0.5 * size / R, cu = (u / R * 0.5 + 0.5) * size, cv = (v / R * 0.5 + 0.5) * size;
-    rect[0] = (int)fmax(0, floor(cu - rad * k) - 1);
-    rect[1] = (int)fmax(0, floor(cv - rad * k) - 1);
-    rect[2] = (int)fmin(size, ceil(cu + rad * k) + 1);
-    rect[3] = (int)fmin(size, ceil(cv + rad * k) + 1);
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300}, sn = v3_dot(sd, n), k = 0.5 * size / R;
+    for (int i = 0; i < 8; i++) {
+        vec3 b = v3(i & 1 ? cl->bounds_max.x : cl->bounds_min.x, i & 2 ? cl->bounds_max.y : cl->bounds_min.y,
+                    i & 4 ? cl->bounds_max.z : cl->bounds_min.z);
+        vec3 p = v3_add(rel, b), g = v3_sub(p, v3_scale(sd, v3_dot(p, n) / sn));
+        double u = v3_dot(g, ax), v = v3_dot(g, ay);
+        lo[0] = fmin(lo[0], u), hi[0] = fmax(hi[0], u);
+        lo[1] = fmin(lo[1], v), hi[1] = fmax(hi[1], v);
+    }
+    for (int a = 0; a < 2; a++) {
+        rect[a] = (int)fmin(size, fmax(0, floor((lo[a] + R) * k) - 1));
+        rect[a + 2] = (int)fmin(size, fmax(0, ceil((hi[a] + R) * k) + 1));
+    }
 }
 
 /* Whether cloud j shades cloud i: j is drawn at all, nearer the sun (along sd) and its disc seen from the sun
@@ -91,7 +104,7 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
         /* texel (u, v): the point of cloud i's map plane, in j's frame, moved toward the sun before j */
         vec3 o = v3_add(v3_scale(d, -1.0), v3_scale(sd, along + Rj + 1.0));
         int rect[4];
-        disc_rect(v3_dot(d, rt), v3_dot(d, up), Rj, Ri, size, rect);
+        box_rect(&c->cloud, d, sd, sd, rt, up, Ri, size, rect);
         cu_pass_shadow_add(&r->pass_shadow, ctx, &c->cloud, c->ke_rest * c->factor, o, v3_scale(rt, Ri),
                            v3_scale(up, Ri), size, rect);
     }
@@ -112,11 +125,9 @@ static void draw_ground(cu_renderer *r, const cu_target *t, vec3 sd, vec3 c, dou
         if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0))
             continue;
         vec3 o = cl->cloud.origin;
-        double Rj = cl->cloud.bound_radius, D = (o.y + Rj) / sd.y + 1.0;
-        /* where its centre's shadow falls, and how far the shadow reaches (stretched by the low sun) */
-        vec3 g = v3_sub(o, v3_scale(sd, o.y / sd.y));
+        double D = (o.y + cl->cloud.bound_radius) / sd.y + 1.0;
         int rect[4];
-        disc_rect(g.x - c.x, g.z - c.z, Rj / sd.y, 0.5 * S, size, rect);
+        box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S, size, rect);
         rect[1] = rect[1] > y0 ? rect[1] : y0;
         rect[3] = rect[3] < y1 ? rect[3] : y1;
         vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
@@ -156,19 +167,38 @@ static void ground_hashes(const cu_renderer *r, vec3 drift, vec3 sd, vec3 c, dou
         const cu_cloud_slot *cl = &r->clouds.slot[j];
         if (cl->cloud.n == 0 || !(cl->ke_rest > 0))
             continue;
-        vec3 o = v3_sub(cl->cloud.origin, drift), g = v3_sub(o, v3_scale(sd, o.y / sd.y));
-        double reach = 0.5 * S + cl->cloud.bound_radius / sd.y;
-        if (fabs(g.x - c.x) > reach || fabs(g.z - c.z) > reach)
+        vec3 o = v3_sub(cl->cloud.origin, drift);
+        int rect[4];
+        box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S, GROUND_TEXELS, rect);
+        if (rect[2] <= rect[0] || rect[3] <= rect[1])
             continue;
         *pos = sig_add(sig_add(sig_add(sig_add(*pos, j), 4.0 * o.x + 0.382), 4.0 * o.y + 0.382), 4.0 * o.z + 0.382);
         *dens = sig_add(sig_add(*dens, j), 64.0 * cl->factor);
     }
 }
 
+/* Whether any of the view's rays points below the horizon (the sky pass draws the ground there, sky.frag): the
+ * rays through the corners of the screen bound every other (a perspective view's directions are their cone). Clip
+ * to direction through the sky's matrix, as sky.vert does. */
+static int ground_in_view(const cu_camera *cam)
+{
+    const float *m = cam->inv_rot;
+    for (int k = 0; k < 4; k++) {
+        double x = k & 1 ? 1 : -1, y = k & 2 ? 1 : -1, p[2][4];
+        for (int z = 0; z < 2; z++)
+            for (int row = 0; row < 4; row++)
+                p[z][row] = m[row] * x + m[4 + row] * y + m[8 + row] * (z ? 1.0 : -1.0) + m[12 + row];
+        if (p[1][1] / p[1][3] - p[0][1] / p[0][3] < 0)
+            return 1;
+    }
+    return 0;
+}
+
 /* The clouds' shadow on the ground: their optical depth toward the sun over a square about the camera (its side
  * grows with the camera's height; shadows farther away lie within a fraction of a degree of the horizon), in a frame
- * drifting with the clouds' common wind. Remade whole when there is none, a cloud moved in that frame (the shadow
- * must follow it at once: clouds on different winds do every frame), the camera jumped or the sun jumped; when the
+ * drifting with the clouds' common wind; not made while no ground is in view. Remade whole when there is none, a
+ * cloud moved in that frame (the shadow must follow it at once: clouds on different winds do every frame), the
+ * ground came back into view, the camera jumped or the sun jumped; when the
  * sun crept, the camera moved the square on or a cloud's density changed (its life cycle), as the clouds' maps are
  * (frame_maps.c), a band of rows a frame over quality.sun_map_frames frames into a spare, swapped in whole. */
 int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
@@ -179,7 +209,13 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     vec3 sd = ctx->sky->sun_dir, eye = ctx->camera.pos;
     if (!r->shadows || r->scene.sky_model == CU_SKY_CONSTANT || sd.y < 0.02 || ctx->camera.ortho || eye.y <= 0)
         return 0;
-    const int size = 512;
+    if (!ground_in_view(&ctx->camera)) { /* no pixel reads the map: left as it is (130 ms on field_noon) */
+        r->ground_unseen = 1;
+        return 0;
+    }
+    int unseen = r->ground_unseen; /* the map was left behind while the ground was out of view */
+    r->ground_unseen = 0;
+    const int size = GROUND_TEXELS;
     vec3 drift = common_drift(r), e = v3_sub(eye, drift);
     double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
     vec3 c = v3(snap * floor(e.x / snap + 0.5), 0, snap * floor(e.z / snap + 0.5)); /* in the drifting frame */
@@ -202,7 +238,7 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     int same_square = c.x == at.x && c.z == at.y && S == at.z;
     int moved = (same_square && pos != r->ground_scene) || hypot(c.x - at.x, c.z - at.y) > 0.25 * S ||
                 fabs(S - at.z) > 0.25 * S;
-    if (sig != r->ground_sig && (bands == 1 || !r->ground_sig || jumped || lagged || moved)) {
+    if (sig != r->ground_sig && (bands == 1 || !r->ground_sig || jumped || lagged || moved || unseen)) {
         r->ground_band = 0; /* a band under way is overtaken */
         r->ground_sig = sig;
         r->ground_scene = pos;

@@ -116,6 +116,7 @@ static void delete_scene_objects(cu_renderer *r)
     cu_target_delete(&r->ground_next, gl);
     r->ground_sig = 0;
     r->ground_band = 0;
+    r->ground_unseen = 0;
     r->frame_sun_valid = 0;
     cu_cloud_set_free(&r->clouds, gl);
     free(r->order);

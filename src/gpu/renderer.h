@@ -64,6 +64,7 @@ struct cu_renderer {
     uint64_t ground_next_sig, ground_next_scene;
     vec3 ground_next_sun, ground_next_at;
     int ground_band;      /* its bands drawn so far (0: none under way) */
+    int ground_unseen;    /* the last frame showed no ground: its map was left as it was */
     vec3 frame_sun;       /* the sun of the last frame's maps (a sun that jumped since remakes them at once) */
     int frame_sun_valid;
 
