@@ -11,20 +11,25 @@ uniform float u_out_max;       // what the target may hold (fp16 overflows at 65
 uniform vec3 u_ground;         // ground radiance
 #if GROUND_SHADOW
 uniform vec3 u_ground_sun;     // the part of it the sun lights directly
-uniform sampler2D u_ground_tau;// the clouds' optical depth toward the sun above each ground point (pass_shadow.c)
+uniform sampler2D u_ground_tau;// the clouds' optical depth toward the sun above each ground point (pass_shadow.c),
+uniform sampler2D u_ground_tau2;// a map for each wind the clouds ride (frame_ground.c; the second may hold zeros)
 uniform vec3 u_eye;            // the camera, world metres
-uniform vec3 u_gmap;           // the map's centre (x, z) and side (m)
+uniform vec3 u_gmap, u_gmap2;  // each map's centre (x, z) and side (m)
 uniform float u_shadow_g;
 // The clouds' shadow on the ground: sunlight through optical depth tau, direct and diffuse, as a conservative
 // two-stream slab transmits it: 1 / (1 + 3/4 (1 - g) tau) (Bohren 1987). The sky light is not shadowed.
+float tau_in(sampler2D map, vec3 gmap, vec2 g)
+{
+    vec2 uv = (g - gmap.xy) / gmap.z + 0.5;
+    return any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) ? 0.0 : texture(map, uv).r;
+}
 vec3 ground(vec3 dir)
 {
     float t = -u_eye.y / min(dir.y, -1e-6);
     vec2 g = u_eye.xz + dir.xz * t;
-    vec2 uv = (g - u_gmap.xy) / u_gmap.z + 0.5;
-    if (u_eye.y <= 0.0 || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))
+    if (u_eye.y <= 0.0)
         return u_ground;
-    float tau = texture(u_ground_tau, uv).r;
+    float tau = tau_in(u_ground_tau, u_gmap, g) + tau_in(u_ground_tau2, u_gmap2, g);
     return u_ground - u_ground_sun * (1.0 - 1.0 / (1.0 + 0.75 * (1.0 - u_shadow_g) * tau));
 }
 #else

@@ -13,12 +13,15 @@
 
 struct cu_collector;
 
+/* The ground's shadow maps: clouds on up to this many winds move their shadows without remaking them. */
+#define CU_GROUND_MAPS 2
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
        CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the
        ground's in the sky pass */, CU_UNIT_SKY = 12 /* the sky pass's Perez tables */,
        CU_UNIT_CLOUDS = 13 /* the cloud image the sky pass composites (pass_sky.h: cu_pass_sky_draw_over) */,
-       CU_UNIT_MSD = 14 /* the cloud's diffusion grid (ms.mode = diffusion, pass_msd.h) */ };
+       CU_UNIT_MSD = 14 /* the cloud's diffusion grid (ms.mode = diffusion, pass_msd.h) */,
+       CU_UNIT_GROUND2 = 15 /* the sky pass's second ground shadow map */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
@@ -100,8 +103,8 @@ typedef struct cu_gpu_scene {
     float motion[2];
     cu_sun_maps sun;         /* published by the sun pass */
     GLuint sun_ext;          /* the cloud's shadow from other clouds (pass_shadow.c; a 1x1 zero when none) */
-    GLuint ground_tau;       /* the ground's shadow map, 0 when none; its centre (x, z) and side (m) */
-    vec3 ground_map;
+    GLuint ground_tau[CU_GROUND_MAPS]; /* the ground's shadow maps, a wind each (frame_ground.c) or a texture of */
+    vec3 ground_map[CU_GROUND_MAPS];   /* zeros; each one's centre (x, z, world) and side (m) */
     cu_slab_maps slab;       /* published by the slab pass */
     GLuint msd_tex;          /* the cloud's diffusion grid (pass_msd.c), its cloud-local corner and extent (m) */
     vec3 msd_lo, msd_size;

@@ -9,10 +9,11 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_sun_locs_get(gl, prog, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
     LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color);
-    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(shadow_g); LOC(cloud_factor);
+    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(gmap2); LOC(shadow_g); LOC(cloud_factor);
 #undef LOC
     cu_gpu_unit(gl, prog, "u_clouds", CU_UNIT_CLOUDS);
     cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
+    cu_gpu_unit(gl, prog, "u_ground_tau2", CU_UNIT_GROUND2);
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
@@ -86,10 +87,13 @@ static void draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, const 
     gl->Uniform3f(p->ground, (float)sky->ground[0], (float)sky->ground[1], (float)sky->ground[2]);
     gl->Uniform3f(p->ground_sun, (float)sky->ground_sun[0], (float)sky->ground_sun[1], (float)sky->ground_sun[2]);
     gl->Uniform3f(p->eye, (float)ctx->camera.pos.x, (float)ctx->camera.pos.y, (float)ctx->camera.pos.z);
-    gl->Uniform3f(p->gmap, (float)ctx->ground_map.x, (float)ctx->ground_map.y, (float)ctx->ground_map.z);
+    gl->Uniform3f(p->gmap, (float)ctx->ground_map[0].x, (float)ctx->ground_map[0].y, (float)ctx->ground_map[0].z);
+    gl->Uniform3f(p->gmap2, (float)ctx->ground_map[1].x, (float)ctx->ground_map[1].y, (float)ctx->ground_map[1].z);
     gl->Uniform1f(p->shadow_g, (float)cu_shadow_g(ctx));
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
-    gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau);
+    gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau[0]);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_GROUND2);
+    gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau[1]);
     gl->ActiveTexture(GL_TEXTURE0);
     float os[3];
     cu_out_scale(ctx, os);

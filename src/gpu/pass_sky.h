@@ -8,7 +8,7 @@
 typedef struct cu_sky_locs {
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color;
-    GLint ground_sun, eye, gmap, shadow_g, cloud_factor;
+    GLint ground_sun, eye, gmap, gmap2, shadow_g, cloud_factor;
 } cu_sky_locs;
 
 /* prog draws radiance into the HDR target under the clouds; prog_out, for a frame with no cloud in view, the

@@ -112,10 +112,12 @@ static void delete_scene_objects(cu_renderer *r)
     r->temporal_off_said = 0;
     cu_pass_slab_destroy(&r->pass_slab, gl);
     cu_pass_shadow_destroy(&r->pass_shadow, gl);
-    cu_target_delete(&r->ground, gl);
-    cu_target_delete(&r->ground_next, gl);
-    r->ground_sig = 0;
-    r->ground_band = 0;
+    for (int g = 0; g < CU_GROUND_MAPS; g++) {
+        cu_target_delete(&r->ground[g].map, gl);
+        cu_target_delete(&r->ground[g].next, gl);
+        memset(&r->ground[g], 0, sizeof r->ground[g]);
+    }
+    r->ground_maps = 0;
     r->ground_unseen = 0;
     r->frame_sun_valid = 0;
     cu_cloud_set_free(&r->clouds, gl);
@@ -211,7 +213,10 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
             return 1;
     }
     ctx->sun_ext = r->pass_shadow.zero_tex;
-    ctx->ground_tau = r->pass_shadow.zero_tex;
+    for (int g = 0; g < CU_GROUND_MAPS; g++) {
+        ctx->ground_tau[g] = r->pass_shadow.zero_tex;
+        ctx->ground_map[g] = v3(0, 0, 1);
+    }
     ctx->ms_gain[0] = r->pass_energy.gain[0];
     ctx->ms_gain[1] = r->pass_energy.gain[1];
     return 0;

@@ -16,6 +16,22 @@
 #include "pass_tonemap.h"
 #include "pass_upsample.h"
 
+/* The clouds' optical depth toward the sun over a square of ground about the camera, for the clouds on one wind, in
+ * a frame drifting with it (frame_ground.c); with more winds than maps the last holds the rest and does not drift. */
+typedef struct cu_ground_map {
+    vec3 wind;            /* m/s */
+    int mixed;            /* clouds on other winds too: it does not drift */
+    cu_target map;
+    uint64_t sig;
+    uint64_t scene;       /* the positions, in its drifting frame, of its clouds that shade its square */
+    vec3 sun;             /* the sun it was made for */
+    vec3 at;              /* its square: centre x, z (drifting frame) and side (m) */
+    cu_target next;       /* quality.sun_map_frames > 1: made again a band of rows a frame, then swapped */
+    uint64_t next_sig, next_scene;
+    vec3 next_sun, next_at;
+    int band;             /* its bands drawn so far (0: none under way) */
+} cu_ground_map;
+
 struct cu_renderer {
     cu_gl gl;
     cu_desc desc;
@@ -55,16 +71,9 @@ struct cu_renderer {
     unsigned long frame_no; /* frames rendered by this renderer (impostors drawn in the frame before are current) */
     cu_pass_shadow pass_shadow;
     int shadows;          /* clouds shade each other and the ground (several clouds, or a ground to shade) */
-    cu_target ground;     /* the clouds' optical depth toward the sun over the ground around the camera */
-    uint64_t ground_sig;
-    vec3 ground_sun;      /* the sun the ground map was made for */
-    vec3 ground_at;       /* ... and its square: centre x, z and side (m) */
-    cu_target ground_next; /* quality.sun_map_frames > 1: the map made again a band of rows a frame, then swapped */
-    uint64_t ground_scene;    /* the positions of the clouds that shade its square, in the frame drifting with them */
-    uint64_t ground_next_sig, ground_next_scene;
-    vec3 ground_next_sun, ground_next_at;
-    int ground_band;      /* its bands drawn so far (0: none under way) */
-    int ground_unseen;    /* the last frame showed no ground: its map was left as it was */
+    cu_ground_map ground[CU_GROUND_MAPS]; /* the clouds' shadow on the ground, a map a wind (frame_ground.c) */
+    int ground_maps;      /* in use */
+    int ground_unseen;    /* the last frame showed no ground: the maps were left as they were */
     vec3 frame_sun;       /* the sun of the last frame's maps (a sun that jumped since remakes them at once) */
     int frame_sun_valid;
 

@@ -1,8 +1,8 @@
 /* tests/gpu/test_ground_drift.c: the clouds' shadow on the ground as time runs (src/gpu/frame_shadow.c). Clouds on
  * one wind: the ground's map is made in a frame drifting with them, so each frame is the whole render of a fresh
  * scene at that time, bit for bit, without the map being made again; a cloud's changing density (its life cycle) has
- * the map made a band a frame, and the picture settles to the whole render when time stops; clouds on different
- * winds have the map made whole every frame, each frame again the whole render. */
+ * the map made a band a frame, and the picture settles to the whole render when time stops; clouds on two winds
+ * get a drifting map each; with more winds than maps the last map holds the rest and is made whole every frame. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -25,27 +25,50 @@
 #define VIEW "ms.closure=off", "quality.sun_map_frames=4", "cloud.boil=0", "camera.position=700 900 -1300", \
              "camera.look_at=0 80 -250"
 
-/* Two clouds, one drifting east and one north, both shading the ground in view. */
-static const char two_winds[] = "[camera]\nposition = 700 900 -1300\nlook_at = 0 80 -250\nfov = 50\n"
-                                "[sun]\nelevation = 30\nazimuth = 135\n[ms]\nclosure = off\n"
-                                "[cloud]\nboil = 0\nwind = 20 0\n[ellipsoid]\ncenter = 0 250 0\nradii = 200 120 160\n"
-                                "[cloud]\nwind = 0 25\n[ellipsoid]\ncenter = -500 300 -300\nradii = 180 110 150\n";
+/* Clouds on winds of their own, each shading the ground in view: the first two, or all three (more winds than the
+ * renderer's CU_GROUND_MAPS maps; none re-centres a map's square within the test). With placed >= 0 they have no
+ * wind and stand where theirs has carried them by time `placed`, their noise moved back: the same picture without
+ * drifting maps. */
+/* Winds that carry each cloud whole texels of the ground's map (40 km / 512 = 78.125 m) in FRAMES seconds, so that
+ * the placed clouds' maps lie on the same grid of texels as the drifting ones. */
+#define TEXEL_PER_RUN (40000.0 / 512 / FRAMES)
+static const struct { double c[3], r[3], wind[2]; } WIND_CLOUDS[3] = {
+    {{0, 250, 0}, {200, 120, 160}, {2 * TEXEL_PER_RUN, 0}},
+    {{-500, 300, -300}, {180, 110, 150}, {0, -2 * TEXEL_PER_RUN}},
+    {{400, 280, -700}, {150, 100, 130}, {-TEXEL_PER_RUN, -TEXEL_PER_RUN}},
+};
+static char winds_text[2048];
+
+static const char *winds_scene(int clouds, double placed)
+{
+    int n = snprintf(winds_text, sizeof winds_text, "[camera]\nposition = 700 900 -1300\nlook_at = 0 80 -250\n"
+                     "fov = 50\n[sun]\nelevation = 30\nazimuth = 135\n[ms]\nclosure = off\n");
+    for (int i = 0; i < clouds; i++) {
+        double t = placed >= 0 ? placed : 0, w = placed >= 0 ? 0 : 1;
+        const double *c = WIND_CLOUDS[i].c, *r = WIND_CLOUDS[i].r, *v = WIND_CLOUDS[i].wind;
+        n += snprintf(winds_text + n, sizeof winds_text - (size_t)n,
+                      "[cloud]\n%swind = %.9g %.9g\nnoise_offset = %.9g 0 %.9g\n[ellipsoid]\ncenter = %.9g %g %.9g\n"
+                      "radii = %g %g %g\n", i ? "" : "boil = 0\n", w * v[0], w * v[1], -v[0] * t, v[1] * t,
+                      c[0] + v[0] * t, c[1], c[2] - v[1] * t, r[0], r[1], r[2]);
+    }
+    return winds_text;
+}
 
 static double rel_diff(const float *a, const float *b)
 {
     return tr_rel_diff(a, b, NPX);
 }
 
-/* A fresh scene at time t: cumulus.scene with the settings given (NULL-terminated, at most 8), or the two-wind
- * scene when `sets` is NULL. */
-static void fresh_render(tr_ctx *c, const char *const *sets, double t, float *out)
+/* A fresh scene at time t: cumulus.scene with the settings given (NULL-terminated), or the scene `text` when `sets`
+ * is NULL. */
+static void fresh_render(tr_ctx *c, const char *const *sets, const char *text, double t, float *out)
 {
     cu_scene *s;
     cu_error e;
     char tk[64];
     snprintf(tk, sizeof tk, "scene.time=%.9g", t);
     int bad = sets ? cu_scene_load(&s, "scenes/cumulus.scene", &e)
-                   : cu_scene_parse(&s, "two_winds.scene", two_winds, strlen(two_winds), &e);
+                   : cu_scene_parse(&s, "winds.scene", text, strlen(text), &e);
     for (int i = 0; !bad && sets && sets[i]; i++)
         bad = cu_scene_set(s, sets[i], &e);
     if (bad || cu_scene_set(s, tk, &e))
@@ -63,31 +86,43 @@ static void at_time(tr_ctx *c, double t)
         fail_msg("%s %s", e.msg, c->err);
 }
 
-/* Renders FRAMES + 1 frames of the scene, time running dt a frame, each against a fresh scene at that time; counts
- * the ground map's whole remakes after the first frame and the frames with a band under way. */
-static void run(const char *const *sets, double dt, int *whole, int *banded, double *worst, double *moved)
+/* Renders FRAMES + 1 frames of the scene, time running dt a frame, each against a fresh scene at that time; counts,
+ * for each ground map, its whole remakes after the first frame and the frames with a band under way. */
+typedef struct run_counts {
+    int whole[CU_GROUND_MAPS], banded[CU_GROUND_MAPS], maps, mixed;
+    double worst, moved;
+} run_counts;
+
+static void run(const char *const *sets, const char *text, double dt, run_counts *rc)
 {
     tr_ctx c;
     if (tr_open(&c, &cu_display_egl, W, H, 1))
         fail_msg("%s", c.err);
     float *got = malloc(sizeof(float) * NPX * (FRAMES + 2)), *exact = got + NPX;
     for (int k = 0; k <= FRAMES; k++)
-        fresh_render(&c, sets, dt * k, exact + NPX * (size_t)k);
-    fresh_render(&c, sets, 0.0, got);
-    assert_true(c.r->ground_sig != 0); /* the ground's map is in use */
-    *whole = *banded = 0;
-    *worst = 0;
+        fresh_render(&c, sets, text, dt * k, exact + NPX * (size_t)k);
+    fresh_render(&c, sets, text, 0.0, got);
+    memset(rc, 0, sizeof *rc);
+    rc->maps = c.r->ground_maps;
+    for (int g = 0; g < rc->maps; g++)
+        assert_true(c.r->ground[g].sig != 0); /* each map is in use */
     for (int k = 1; k <= FRAMES; k++) {
-        uint64_t sig = c.r->ground_sig;
-        int band = c.r->ground_band;
+        uint64_t sig[CU_GROUND_MAPS];
+        int band[CU_GROUND_MAPS];
+        for (int g = 0; g < rc->maps; g++)
+            sig[g] = c.r->ground[g].sig, band[g] = c.r->ground[g].band;
         at_time(&c, dt * k);
-        /* a new map not from the last band of a spare: made whole in this frame */
-        *whole += c.r->ground_sig != sig && !(band == 3 && c.r->ground_band == 0);
-        *banded += c.r->ground_band > 0;
+        for (int g = 0; g < rc->maps; g++) {
+            const cu_ground_map *m = &c.r->ground[g];
+            /* a new map not from the last band of a spare: made whole in this frame */
+            rc->whole[g] += m->sig != sig[g] && !(band[g] == 3 && m->band == 0);
+            rc->banded[g] += m->band > 0;
+        }
         tr_read_rgbf(&c, got);
-        *worst = fmax(*worst, rel_diff(got, exact + NPX * (size_t)k));
+        rc->worst = fmax(rc->worst, rel_diff(got, exact + NPX * (size_t)k));
     }
-    *moved = rel_diff(exact, exact + NPX * (size_t)FRAMES);
+    rc->mixed = c.r->ground[rc->maps - 1].mixed;
+    rc->moved = rel_diff(exact, exact + NPX * (size_t)FRAMES);
     free(got);
     tr_close(&c);
 }
@@ -102,8 +137,8 @@ static double shadow_follows(tr_ctx *c, const char *const *sets, double t)
     snprintf(p, sizeof p, "camera.position=%.9g 900 -1300", 700 - 20 * t);
     snprintf(l, sizeof l, "camera.look_at=%.9g 80 -250", 0 - 20 * t);
     const char *const moved_cam[] = {VIEW, p, l, NULL};
-    fresh_render(c, sets, t, a);
-    fresh_render(c, moved_cam, 0.0, b);
+    fresh_render(c, sets, NULL, t, a);
+    fresh_render(c, moved_cam, NULL, 0.0, b);
     double d = rel_diff(a, b);
     free(a);
     return d;
@@ -115,15 +150,15 @@ static void test_one_wind_moves_the_map_not_remakes_it(void **st)
 {
     (void)st;
     static const char *const sets[] = {VIEW, "cloud.wind=20 0", NULL};
-    int whole, banded;
-    double worst, moved;
-    run(sets, 1.0, &whole, &banded, &worst, &moved);
+    run_counts k;
+    run(sets, NULL, 1.0, &k);
     printf("one wind, 1 s a frame: %d whole remakes, %d frames with a band, largest difference from the whole render "
-           "%.3g (the picture moved by %.3g)\n", whole, banded, worst, moved);
-    assert_int_equal(whole, 0);
-    assert_int_equal(banded, 0);
-    assert_true(moved > 0.02);
-    assert_true(worst == 0.0);
+           "%.3g (the picture moved by %.3g)\n", k.whole[0], k.banded[0], k.worst, k.moved);
+    assert_int_equal(k.maps, 1);
+    assert_int_equal(k.whole[0], 0);
+    assert_int_equal(k.banded[0], 0);
+    assert_true(k.moved > 0.02);
+    assert_true(k.worst == 0.0);
     tr_ctx c;
     if (tr_open(&c, &cu_display_egl, W, H, 1))
         fail_msg("%s", c.err);
@@ -146,15 +181,15 @@ static void test_growing_cloud_bands_and_settles(void **st)
         fail_msg("%s", c.err);
     float *got = malloc(sizeof(float) * NPX * 2), *ref = got + NPX;
     const double dt = 4.0;
-    fresh_render(&c, sets, dt * FRAMES, ref);
-    fresh_render(&c, sets, 0.0, got);
+    fresh_render(&c, sets, NULL, dt * FRAMES, ref);
+    fresh_render(&c, sets, NULL, 0.0, got);
     int banded = 0, whole = 0;
     for (int k = 1; k <= FRAMES; k++) {
-        uint64_t sig = c.r->ground_sig;
-        int band = c.r->ground_band;
+        uint64_t sig = c.r->ground[0].sig;
+        int band = c.r->ground[0].band;
         at_time(&c, dt * k);
-        whole += c.r->ground_sig != sig && !(band == 3 && c.r->ground_band == 0);
-        banded += c.r->ground_band > 0;
+        whole += c.r->ground[0].sig != sig && !(band == 3 && c.r->ground[0].band == 0);
+        banded += c.r->ground[0].band > 0;
     }
     int settled_after = -1;
     for (int f = 1; f <= 8 && settled_after < 0; f++) {
@@ -175,20 +210,59 @@ static void test_growing_cloud_bands_and_settles(void **st)
     tr_close(&c);
 }
 
-/* Clouds on different winds cannot share a drifting frame: the map is made whole every frame they moved, each
- * frame the whole render at its time. */
-static void test_two_winds_remake_whole(void **st)
+/* The clouds on winds of their own at time t against the same clouds standing where their winds carried them, no
+ * wind: the drifting maps read where their clouds are (the maps lie on other grids of texels, as above). */
+static double winds_follow(int clouds, double t)
+{
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    float *a = malloc(sizeof(float) * NPX * 2), *b = a + NPX;
+    fresh_render(&c, NULL, winds_scene(clouds, -1), t, a);
+    fresh_render(&c, NULL, winds_scene(clouds, t), 0.0, b);
+    double d = rel_diff(a, b);
+    free(a);
+    tr_close(&c);
+    return d;
+}
+
+/* Two clouds on two winds: a map each, each drifting with its cloud, neither made again; each frame the whole
+ * render at its time to float rounding (the clouds' offsets from a map's centre are worked out from other positions:
+ * 2e-6 measured), and the shadows where the clouds are. */
+static void test_two_winds_two_maps(void **st)
 {
     (void)st;
-    int whole, banded;
-    double worst, moved;
-    run(NULL, 1.0, &whole, &banded, &worst, &moved);
-    printf("two winds, 1 s a frame: %d whole remakes, %d frames with a band, largest difference from the whole "
-           "render %.3g (the picture moved by %.3g)\n", whole, banded, worst, moved);
-    assert_int_equal(whole, FRAMES);
-    assert_int_equal(banded, 0);
-    assert_true(moved > 0.02);
-    assert_true(worst == 0.0);
+    run_counts k;
+    run(NULL, winds_scene(2, -1), 1.0, &k);
+    double follows = winds_follow(2, FRAMES);
+    printf("two winds, 1 s a frame: %d maps, whole remakes %d and %d, bands %d and %d, largest difference from the "
+           "whole render %.3g (the picture moved by %.3g); against the clouds placed %.3g\n", k.maps, k.whole[0],
+           k.whole[1], k.banded[0], k.banded[1], k.worst, k.moved, follows);
+    assert_int_equal(k.maps, 2);
+    assert_false(k.mixed);
+    assert_true(k.whole[0] == 0 && k.whole[1] == 0 && k.banded[0] == 0 && k.banded[1] == 0);
+    assert_true(k.moved > 0.02);
+    assert_true(k.worst <= 1e-5);
+    assert_true(follows < 1e-3);
+}
+
+/* Three winds, two maps: the third cloud shares the last map, which cannot drift and is made whole every frame; the
+ * first map still drifts. Each frame the whole render, the shadows where the clouds are. */
+static void test_more_winds_than_maps(void **st)
+{
+    (void)st;
+    run_counts k;
+    run(NULL, winds_scene(3, -1), 1.0, &k);
+    double follows = winds_follow(3, FRAMES);
+    printf("three winds, 1 s a frame: %d maps (the last mixed: %d), whole remakes %d and %d, largest difference from "
+           "the whole render %.3g; against the clouds placed %.3g\n", k.maps, k.mixed, k.whole[0], k.whole[1],
+           k.worst, k.moved > 0 ? follows : -1.0);
+    assert_int_equal(k.maps, CU_GROUND_MAPS);
+    assert_true(k.mixed);
+    assert_int_equal(k.whole[0], 0);
+    assert_int_equal(k.whole[1], FRAMES);
+    assert_true(k.worst <= 1e-5);
+    assert_true(follows < 1e-3);
 }
 
 int main(void)
@@ -196,7 +270,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_wind_moves_the_map_not_remakes_it),
         cmocka_unit_test(test_growing_cloud_bands_and_settles),
-        cmocka_unit_test(test_two_winds_remake_whole),
+        cmocka_unit_test(test_two_winds_two_maps),
+        cmocka_unit_test(test_more_winds_than_maps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

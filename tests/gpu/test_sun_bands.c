@@ -85,15 +85,15 @@ static void test_moving_sun_settles_to_the_whole_render(void **st)
     if (tr_render(&c, "scenes/cumulus.scene", sets_k4))
         fail_msg("%s", c.err);
     const cu_cloud_slot *sl = &c.r->clouds.slot[0];
-    int band = sl->next_band, ground_band = c.r->ground_band;
+    int band = sl->next_band, ground_band = c.r->ground[0].band;
     assert_int_equal(band, 0); /* the first frame makes its maps whole */
     for (int k = 1; k <= moves; k++) {
         set_sun(&c, EL, AZ + STEP * k);
         /* exactly one band a frame, the cloud's and the ground's */
         assert_int_equal(sl->next_band, (band + 1) % K);
-        assert_int_equal(c.r->ground_band, (ground_band + 1) % K);
+        assert_int_equal(c.r->ground[0].band, (ground_band + 1) % K);
         band = sl->next_band;
-        ground_band = c.r->ground_band;
+        ground_band = c.r->ground[0].band;
         double lag = degrees_between(sl->maps_sun, c.r->sky.sun_dir);
         assert_true(lag <= (2 * K - 1) * STEP + 1e-6);
         tr_read_rgbf(&c, got);
@@ -254,7 +254,7 @@ static void test_flying_camera_settles(void **st)
     for (int k = 0; k <= 8; k++) {
         pos[0] = look[0] = -600 + 150.0 * k;
         frame_from(&c, pos, look);
-        banded += c.r->ground_band > 0;
+        banded += c.r->ground[0].band > 0;
     }
     int settled_after = -1;
     for (int f = 1; f <= 8 && settled_after < 0; f++) {

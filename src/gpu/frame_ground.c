@@ -1,0 +1,210 @@
+/* src/gpu/frame_ground.c: the clouds' shadow on the ground (pass_shadow.c draws it, sky.frag reads it): their optical
+ * depth toward the sun over a square about the camera, a map for each wind the clouds ride (a layer's clouds share
+ * one), made in a frame drifting with that wind so that a shadow follows its cloud by where the map is read, and made
+ * again only when something changes in that frame: whole, or a band of rows a frame. */
+#include "frame.h"
+#include <math.h>
+#include <stdint.h>
+
+#define GROUND_TEXELS 512 /* a map's side */
+
+/* Which map cloud j's shadow goes into: the one of its wind; with more winds than maps, the last. */
+static int map_of(const cu_renderer *r, const cu_cloud_slot *cl)
+{
+    for (int g = 0; g < r->ground_maps - 1; g++)
+        if (v3_dot(v3_sub(cl->wind, r->ground[g].wind), v3_sub(cl->wind, r->ground[g].wind)) == 0)
+            return g;
+    return r->ground_maps - 1;
+}
+
+/* The maps' winds, in the order the clouds first ride them; the last map mixed when more winds than maps remain. A
+ * map whose wind changed holds other clouds now: its signature no longer matches, so it is made whole. */
+static void assign_winds(cu_renderer *r)
+{
+    int n = 0, mixed = 0;
+    vec3 w[CU_GROUND_MAPS];
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0)
+            continue;
+        int g = 0;
+        while (g < n && v3_dot(v3_sub(cl->wind, w[g]), v3_sub(cl->wind, w[g])) != 0)
+            g++;
+        if (g == n && n < CU_GROUND_MAPS)
+            w[n++] = cl->wind;
+        else if (g == n)
+            mixed = 1;
+    }
+    r->ground_maps = n > 0 ? n : 1;
+    for (int g = 0; g < r->ground_maps; g++) {
+        r->ground[g].wind = n > 0 ? w[g] : v3(0, 0, 0);
+        r->ground[g].mixed = g == r->ground_maps - 1 && mixed;
+    }
+}
+
+/* Where map g's wind has carried its clouds by now (zero for a mixed map: it does not drift). */
+static vec3 drift_of(const cu_renderer *r, int g)
+{
+    return r->ground[g].mixed ? v3(0, 0, 0) : v3_scale(r->ground[g].wind, r->time);
+}
+
+/* Rows [y0, y1) of map g's target t over the square of side S about c (world), for the sun sd. */
+static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3 c, double S, int y0, int y1)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    int size = t->width;
+    cu_gpu_scene_set_sun(ctx);
+    ctx->sun_dir = sd;
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, t, size, y0, y1);
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0) || map_of(r, cl) != g)
+            continue;
+        vec3 o = cl->cloud.origin;
+        double D = (o.y + cl->cloud.bound_radius) / sd.y + 1.0;
+        int rect[4];
+        cu_shadow_box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S, size, rect);
+        rect[1] = rect[1] > y0 ? rect[1] : y0;
+        rect[3] = rect[3] < y1 ? rect[3] : y1;
+        vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
+        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * cl->factor, origin, v3(0.5 * S, 0, 0),
+                           v3(0, 0, 0.5 * S), size, rect);
+    }
+    cu_pass_shadow_end(ctx);
+    cu_gpu_scene_set_sun(ctx); /* the sky after it: the sun now */
+}
+
+/* What the square of side S about c (x, z in map g's drifting frame) shows of its clouds for the sun sd: the
+ * positions (in that frame) of the clouds whose shadows can reach it, and their densities. A cloud elsewhere cannot
+ * change a texel of the map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
+static void ground_hashes(const cu_renderer *r, int g, vec3 drift, vec3 sd, vec3 c, double S, uint64_t *pos,
+                          uint64_t *dens)
+{
+    *pos = *dens = 1469598103934665603ull;
+    for (int j = 0; j < r->clouds.n; j++) {
+        const cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || !(cl->ke_rest > 0) || map_of(r, cl) != g)
+            continue;
+        vec3 o = v3_sub(cl->cloud.origin, drift);
+        int rect[4];
+        cu_shadow_box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S,
+                           GROUND_TEXELS, rect);
+        if (rect[2] <= rect[0] || rect[3] <= rect[1])
+            continue;
+        *pos = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_add(*pos, j), 4.0 * o.x + 0.382), 4.0 * o.y + 0.382),
+                          4.0 * o.z + 0.382);
+        *dens = cu_sig_add(cu_sig_add(*dens, j), 64.0 * cl->factor);
+    }
+}
+
+/* Whether any of the view's rays points below the horizon (the sky pass draws the ground there, sky.frag): the
+ * rays through the corners of the screen bound every other (a perspective view's directions are their cone). Clip
+ * to direction through the sky's matrix, as sky.vert does. */
+static int ground_in_view(const cu_camera *cam)
+{
+    const float *m = cam->inv_rot;
+    for (int k = 0; k < 4; k++) {
+        double x = k & 1 ? 1 : -1, y = k & 2 ? 1 : -1, p[2][4];
+        for (int z = 0; z < 2; z++)
+            for (int row = 0; row < 4; row++)
+                p[z][row] = m[row] * x + m[4 + row] * y + m[8 + row] * (z ? 1.0 : -1.0) + m[12 + row];
+        if (p[1][1] / p[1][3] - p[0][1] / p[0][3] < 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* Map g brought up to date (see the top of the file) for the sun sd, the eye and the frame's state: whole when it
+ * has none, a cloud moved in its drifting frame over the same square (the shadow must follow at once; a mixed map's
+ * clouds do every frame they move), the ground came back into view (unseen), the camera jumped a quarter of the
+ * square or the sun jumped; when the sun crept, the camera moved the square on or a cloud's density changed (its
+ * life cycle), as the clouds' maps are (frame_maps.c), a band of rows a frame over quality.sun_map_frames frames into
+ * a spare, swapped in whole. */
+static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int unseen, cu_error *err)
+{
+    cu_ground_map *m = &r->ground[g];
+    const int size = GROUND_TEXELS;
+    vec3 drift = drift_of(r, g), e = v3_sub(eye, drift);
+    double S = fmin(fmax(40.0 * eye.y + 4000.0, 4000.0), 60000.0), snap = S / 16;
+    vec3 c = v3(snap * floor(e.x / snap + 0.5), 0, snap * floor(e.z / snap + 0.5)); /* in the drifting frame */
+    /* the sun as the map was made for while it creeps less than CU_SUN_MAP_STEP (as the clouds' own maps) */
+    if (m->sig && !cu_sun_apart(m->sun, sd, CU_SUN_MAP_STEP))
+        sd = m->sun;
+    uint64_t pos, dens;
+    ground_hashes(r, g, drift, sd, c, S, &pos, &dens);
+    uint64_t sig = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_bits(pos, dens), c.x), c.z), S);
+    sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
+    if (!m->map.fbo && cu_pass_shadow_target(&r->gl, size, &m->map, err))
+        return 1;
+    int bands = r->scene.sun_map_frames;
+    int lagged = cu_sun_apart(m->sun, sd, cu_sun_map_lag(bands));
+    /* A camera flying on moves the square a sixteenth at a time: the old square still holds all but the far edge of
+     * the new one. */
+    int same_square = c.x == m->at.x && c.z == m->at.y && S == m->at.z;
+    int moved = (same_square && pos != m->scene) || hypot(c.x - m->at.x, c.z - m->at.y) > 0.25 * S ||
+                fabs(S - m->at.z) > 0.25 * S;
+    if (sig != m->sig && (bands == 1 || !m->sig || jumped || lagged || moved || unseen)) {
+        m->band = 0; /* a band under way is overtaken */
+        m->sig = sig;
+        m->scene = pos;
+        m->sun = sd;
+        m->at = v3(c.x, c.z, S);
+        draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, 0, size);
+    } else if (sig != m->sig || m->band > 0) {
+        if (m->band == 0) {
+            if (!m->next.fbo && cu_pass_shadow_target(&r->gl, size, &m->next, err))
+                return 1;
+            m->next_sig = sig;
+            m->next_scene = pos;
+            m->next_sun = sd;
+            m->next_at = v3(c.x, c.z, S);
+        }
+        vec3 at = m->next_at;
+        int b = m->band++;
+        draw_ground(r, g, &m->next, m->next_sun, v3(at.x + drift.x, 0, at.y + drift.z), at.z, size * b / bands,
+                    size * (b + 1) / bands);
+        if (m->band == bands) { /* the last band: the new map in, the old one the next spare */
+            cu_target t = m->map;
+            m->map = m->next;
+            m->next = t;
+            m->sig = m->next_sig;
+            m->scene = m->next_scene;
+            m->sun = m->next_sun;
+            m->at = m->next_at;
+            m->band = 0;
+            if (sig != m->sig)
+                r->maps_deferred = 1; /* the sun or the clouds moved on while the bands were drawn */
+        } else {
+            r->maps_deferred = 1; /* the picture has not settled */
+        }
+    }
+    r->ctx.ground_tau[g] = m->map.tex[0];
+    r->ctx.ground_map[g] = v3(m->at.x + drift.x, m->at.y + drift.z, m->at.z);
+    return 0;
+}
+
+/* The ground's shadow maps (the square's side grows with the camera's height; shadows farther away lie within a
+ * fraction of a degree of the horizon); none made while no ground is in view, or without a sun to cast them. */
+int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
+{
+    cu_gpu_scene *ctx = &r->ctx;
+    for (int g = 0; g < CU_GROUND_MAPS; g++) {
+        ctx->ground_tau[g] = r->pass_shadow.zero_tex;
+        ctx->ground_map[g] = v3(0, 0, 1);
+    }
+    vec3 sd = ctx->sky->sun_dir, eye = ctx->camera.pos;
+    if (!r->shadows || r->scene.sky_model == CU_SKY_CONSTANT || sd.y < 0.02 || ctx->camera.ortho || eye.y <= 0)
+        return 0;
+    if (!ground_in_view(&ctx->camera)) { /* no pixel reads the maps: left as they are (130 ms on field_noon) */
+        r->ground_unseen = 1;
+        return 0;
+    }
+    int unseen = r->ground_unseen; /* the maps were left behind while the ground was out of view */
+    r->ground_unseen = 0;
+    int jumped = !r->frame_sun_valid || cu_sun_apart(r->frame_sun, sd, CU_SUN_MAP_JUMP);
+    assign_winds(r);
+    for (int g = 0; g < r->ground_maps; g++)
+        if (update_map(r, g, sd, eye, jumped, unseen, err))
+            return 1;
+    return 0;
+}
