@@ -8,11 +8,16 @@
 
 #define GROUND_TEXELS 512 /* a map's side */
 
+static int same_wind(vec3 a, vec3 b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
 /* Which map cloud j's shadow goes into: the one of its wind; with more winds than maps, the last. */
 static int map_of(const cu_renderer *r, const cu_cloud_slot *cl)
 {
     for (int g = 0; g < r->ground_maps - 1; g++)
-        if (v3_dot(v3_sub(cl->wind, r->ground[g].wind), v3_sub(cl->wind, r->ground[g].wind)) == 0)
+        if (same_wind(cl->wind, r->ground[g].wind))
             return g;
     return r->ground_maps - 1;
 }
@@ -28,7 +33,7 @@ static void assign_winds(cu_renderer *r)
         if (cl->cloud.n == 0)
             continue;
         int g = 0;
-        while (g < n && v3_dot(v3_sub(cl->wind, w[g]), v3_sub(cl->wind, w[g])) != 0)
+        while (g < n && !same_wind(cl->wind, w[g]))
             g++;
         if (g == n && n < CU_GROUND_MAPS)
             w[n++] = cl->wind;
