@@ -219,13 +219,50 @@ static void trace_line(const ig_args *a, const cu_sim_link *l, const ig_world *w
     fflush(stdout);
 }
 
+/* The clouds' time. CIGI: the host's timestamp where it gives one (every channel of a multi-channel display then
+ * shows the same clouds); the 10 us ticks wrap after 11.9 h, so differences are taken modulo 2^32. A frame without
+ * one from a host that gave them keeps the host's time base: the host frame drawn last, again, at its own time (a
+ * repeat draws the same picture), a new one at the host's last time plus this IG's clock since then. Never a jump to
+ * the IG's own clock and back, which moves every cloud and has their maps made again. Other links, and a CIGI host
+ * that never gave a timestamp: this IG's clock. */
+typedef struct ig_clock {
+    int have_ts;
+    uint32_t ts_first;
+    double host_t;            /* the clouds' time of the last frame with a timestamp */
+    uint64_t host_ns;         /* this IG's clock then */
+    double last_t;            /* the time drawn last */
+    uint32_t last_frame;      /* and its host frame */
+} ig_clock;
+
+static double clouds_time(ig_clock *c, const ig_args *a, const cu_sim_link *l, double t0, uint64_t elapsed_ns)
+{
+    double t;
+    if (a->link.proto == CU_SIM_CIGI && l->cigi.timestamp_valid) {
+        if (!c->have_ts) {
+            c->ts_first = l->cigi.timestamp;
+            c->have_ts = 1;
+        }
+        t = t0 + (double)(uint32_t)(l->cigi.timestamp - c->ts_first) * 1e-5;
+        c->host_t = t;
+        c->host_ns = elapsed_ns;
+    } else if (c->have_ts && a->link.proto == CU_SIM_CIGI) {
+        t = l->cigi.host_frame == c->last_frame ? c->last_t
+            : c->host_t + (double)(elapsed_ns - c->host_ns) * 1e-9;
+    } else {
+        t = t0 + (double)elapsed_ns * 1e-9;
+    }
+    c->last_t = t;
+    c->last_frame = a->link.proto == CU_SIM_CIGI ? l->cigi.host_frame : 0;
+    return t;
+}
+
 static int run(cli_session *s, ig_args *a, cu_sim_link *l, ig_world *w)
 {
     cu_sim_state st;
     memset(&st, 0, sizeof st);
     double t0 = cu_renderer_get_time(s->r), lat_hist[LATENCY_KEEP];
-    uint64_t start = now_ns(), ts_first = 0, last_log = 0;
-    int have_ts = 0;
+    uint64_t start = now_ns(), last_log = 0;
+    ig_clock clk = {0};
     long frames = 0, nlat = 0;
     char err[512], notice[256] = "";
     int rc = 0;
@@ -244,19 +281,7 @@ static int run(cli_session *s, ig_args *a, cu_sim_link *l, ig_world *w)
             }
             l->last_error[0] = 0;
         }
-        /* The clouds' time: the host's timestamp where CIGI gives one (every channel of a multi-channel display then
-         * shows the same clouds), else this IG's own clock. The 10 us ticks wrap after 11.9 h: differences are taken
-         * modulo 2^32. */
-        double t;
-        if (a->link.proto == CU_SIM_CIGI && l->cigi.timestamp_valid) {
-            if (!have_ts) {
-                ts_first = l->cigi.timestamp;
-                have_ts = 1;
-            }
-            t = t0 + (double)(uint32_t)(l->cigi.timestamp - (uint32_t)ts_first) * 1e-5;
-        } else {
-            t = t0 + (double)(now_ns() - start) * 1e-9;
-        }
+        double t = clouds_time(&clk, a, l, t0, now_ns() - start);
         cu_error e;
         if (cu_renderer_set_time(s->r, fmin(t, 1e9), &e) ||
             ig_world_apply(w, &st, s->r, s->width, s->height, (double)now_ns() * 1e-9, err, sizeof err)) {

@@ -2,7 +2,8 @@
 # is in its header): the eyepoint follows the ownship (against WGS84 worked here in awk, and against a scene file's
 # camera rendered by `cumulo render`), the sun follows the host's date and time (against `cumulo sun`), a cloud layer's
 # coverage going 0 -> 60 % draws what the same layer in a scene file draws, Start of Frame echoes the host's frames
-# (the host checks each), and hostile datagrams are counted and skipped while the IG goes on drawing. The exchange is
+# (the host checks each), and hostile datagrams are counted and skipped while the IG goes on drawing, the frames their
+# IG Controls have drawn again at the host's time. The exchange is
 # captured on the loopback interface and decoded by Wireshark's CIGI dissector (tshark): every field it reads must
 # be what was meant.
 # shellcheck disable=SC2086
@@ -114,6 +115,12 @@ il=$(ig_line 24)
 if [ $ok -eq 1 ] && close "$(field eye "$il")" "0,300,0" 0.01 && [ -n "$(ig_line 23)" ] &&
    build/png_diff "$OUT/layer.png" "$(frame_png 24)" 1 >/dev/null; then t_ok hostile_datagrams_counted_and_skipped
 else t_fail hostile_datagrams_counted_and_skipped "$stats; last frame: $il"; fi
+# The frames the bursts' IG Controls (no timestamp) had the IG draw again, on their own: at the host's time (all its
+# timestamps are 0), never the IG's own clock: a jump there and back moves every cloud, and the frame after it is
+# not the scene file's picture until the clouds' maps are made again.
+reps=$(grep -c '^repeat before' "$OUT/host.log"); moved=$(grep '^ig frame=' "$OUT/ig.out" | grep -v ' time=0.000 ' | head -2)
+if [ "$reps" -ge 1 ] && [ -z "$moved" ]; then t_ok frames_without_timestamp_keep_the_host_time
+else t_fail frames_without_timestamp_keep_the_host_time "$reps frames drawn again; at another time: '$moved'"; fi
 lat=$(grep '^\[ig\] latency' "$OUT/ig.out")
 case "$lat" in *"median="[0-9]*" p95="[0-9]*) t_ok latency_reported ;; *) t_fail latency_reported "'$lat'" ;; esac
 
