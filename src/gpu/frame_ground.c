@@ -1,23 +1,31 @@
 /* src/gpu/frame_ground.c: the clouds' shadow on the ground (pass_shadow.c draws it, sky.frag reads it): their optical
  * depth toward the sun over a square about the camera, a map for each wind the clouds ride (a layer's clouds share
  * one), made in a frame drifting with that wind so that a shadow follows its cloud by where the map is read, and made
- * again only when something changes in that frame: whole, or a band of rows a frame. */
+ * again only when something changes in that frame: whole, a band of rows a frame, or, when only some clouds' densities
+ * changed (their life cycles), just the texels their shadows cover. */
 #include "frame.h"
 #include <math.h>
 #include <stdint.h>
 
 #define GROUND_TEXELS 512 /* a map's side */
 
-static int same_wind(vec3 a, vec3 b)
+static int same_vec(vec3 a, vec3 b) /* the same vector, to the bit: a wind, a sun */
 {
     return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+/* A cloud's density in the ground's maps: in 64ths of its mature one, so that a map made again over part of its
+ * texels is, texel for texel, the map made whole (what it holds is a function of its signature). */
+static int dens_q(const cu_cloud_slot *cl)
+{
+    return (int)llround(64.0 * cl->factor);
 }
 
 /* Which map cloud j's shadow goes into: the one of its wind; with more winds than maps, the last. */
 static int map_of(const cu_renderer *r, const cu_cloud_slot *cl)
 {
     for (int g = 0; g < r->ground_maps - 1; g++)
-        if (same_wind(cl->wind, r->ground[g].wind))
+        if (same_vec(cl->wind, r->ground[g].wind))
             return g;
     return r->ground_maps - 1;
 }
@@ -33,7 +41,7 @@ static void assign_winds(cu_renderer *r)
         if (cl->cloud.n == 0)
             continue;
         int g = 0;
-        while (g < n && !same_wind(cl->wind, w[g]))
+        while (g < n && !same_vec(cl->wind, w[g]))
             g++;
         if (g == n && n < CU_GROUND_MAPS)
             w[n++] = cl->wind;
@@ -53,26 +61,37 @@ static vec3 drift_of(const cu_renderer *r, int g)
     return r->ground[g].mixed ? v3(0, 0, 0) : v3_scale(r->ground[g].wind, r->time);
 }
 
-/* Rows [y0, y1) of map g's target t over the square of side S about c (world), for the sun sd. */
-static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3 c, double S, int y0, int y1)
+/* The texels reg = {x0, y0, x1, y1} of map g's target t over the square of side S about c (world), for the sun sd;
+ * with `band` >= 0 the map made again in bands (band `band`), and what its clouds' densities are is kept. */
+static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3 c, double S, const int reg[4],
+                        int band)
 {
     cu_gpu_scene *ctx = &r->ctx;
     int size = t->width;
     cu_gpu_scene_set_sun(ctx);
     ctx->sun_dir = sd;
-    cu_pass_shadow_begin(&r->pass_shadow, ctx, t, size, y0, y1);
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, t, size, reg);
     for (int j = 0; j < r->clouds.n; j++) {
-        const cu_cloud_slot *cl = &r->clouds.slot[j];
-        if (cl->cloud.n == 0 || !(cl->factor * cl->ke_rest > 0) || map_of(r, cl) != g)
+        cu_cloud_slot *cl = &r->clouds.slot[j];
+        if (cl->cloud.n == 0 || map_of(r, cl) != g)
+            continue;
+        int q = dens_q(cl);
+        if (band < 0)
+            cl->ground_q = q;
+        else if (band == 0 || cl->ground_next_q != q)
+            cl->ground_next_q = band == 0 ? q : -1; /* a band of another density: mixed (made again when it changes) */
+        if (!(q > 0 && cl->ke_rest > 0))
             continue;
         vec3 o = cl->cloud.origin;
         double D = (o.y + cl->cloud.bound_radius) / sd.y + 1.0;
         int rect[4];
         cu_shadow_box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S, size, rect);
-        rect[1] = rect[1] > y0 ? rect[1] : y0;
-        rect[3] = rect[3] < y1 ? rect[3] : y1;
+        for (int k = 0; k < 2; k++) {
+            rect[k] = rect[k] > reg[k] ? rect[k] : reg[k];
+            rect[k + 2] = rect[k + 2] < reg[k + 2] ? rect[k + 2] : reg[k + 2];
+        }
         vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
-        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * cl->factor, origin, v3(0.5 * S, 0, 0),
+        cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * q / 64.0, origin, v3(0.5 * S, 0, 0),
                            v3(0, 0, 0.5 * S), size, rect);
     }
     cu_pass_shadow_end(ctx);
@@ -80,25 +99,33 @@ static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3
 }
 
 /* What the square of side S about c (x, z in map g's drifting frame) shows of its clouds for the sun sd: the
- * positions (in that frame) of the clouds whose shadows can reach it, and their densities. A cloud elsewhere cannot
- * change a texel of the map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
+ * positions (in that frame) of the clouds whose shadows can reach it, and their densities; and in reg the texels of
+ * those whose density is not the one the map holds (empty: x1 <= x0). A cloud elsewhere cannot change a texel of the
+ * map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
 static void ground_hashes(const cu_renderer *r, int g, vec3 drift, vec3 sd, vec3 c, double S, uint64_t *pos,
-                          uint64_t *dens)
+                          uint64_t *dens, int reg[4])
 {
     *pos = *dens = 1469598103934665603ull;
+    reg[0] = reg[1] = GROUND_TEXELS;
+    reg[2] = reg[3] = 0;
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *cl = &r->clouds.slot[j];
         if (cl->cloud.n == 0 || !(cl->ke_rest > 0) || map_of(r, cl) != g)
             continue;
         vec3 o = v3_sub(cl->cloud.origin, drift);
-        int rect[4];
-        cu_shadow_box_rect(&cl->cloud, v3_sub(o, c), sd, v3(0, 1, 0), v3(1, 0, 0), v3(0, 0, 1), 0.5 * S,
-                           GROUND_TEXELS, rect);
+        int rect[4]; /* as draw_ground has it, to the bit */
+        cu_shadow_box_rect(&cl->cloud, v3_sub(cl->cloud.origin, v3_add(c, drift)), sd, v3(0, 1, 0), v3(1, 0, 0),
+                           v3(0, 0, 1), 0.5 * S, GROUND_TEXELS, rect);
         if (rect[2] <= rect[0] || rect[3] <= rect[1])
             continue;
         *pos = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_add(*pos, j), 4.0 * o.x + 0.382), 4.0 * o.y + 0.382),
                           4.0 * o.z + 0.382);
-        *dens = cu_sig_add(cu_sig_add(*dens, j), 64.0 * cl->factor);
+        *dens = cu_sig_add(cu_sig_add(*dens, j), dens_q(cl));
+        if (dens_q(cl) != cl->ground_q)
+            for (int k = 0; k < 2; k++) {
+                reg[k] = rect[k] < reg[k] ? rect[k] : reg[k];
+                reg[k + 2] = rect[k + 2] > reg[k + 2] ? rect[k + 2] : reg[k + 2];
+            }
     }
 }
 
@@ -122,9 +149,10 @@ static int ground_in_view(const cu_camera *cam)
 /* Map g brought up to date (see the top of the file) for the sun sd, the eye and the frame's state: whole when it
  * has none, a cloud moved in its drifting frame over the same square (the shadow must follow at once; a mixed map's
  * clouds do every frame they move), the ground came back into view (unseen), the camera jumped a quarter of the
- * square or the sun jumped; when the sun crept, the camera moved the square on or a cloud's density changed (its
- * life cycle), as the clouds' maps are (frame_maps.c), a band of rows a frame over quality.sun_map_frames frames into
- * a spare, swapped in whole. */
+ * square or the sun jumped; only the texels of the clouds whose density changed (their life cycles), when nothing
+ * else did and they are no more than a band; when the sun crept, the camera moved the square on or the densities
+ * changed over more, as the clouds' maps are (frame_maps.c), a band of rows a frame over quality.sun_map_frames
+ * frames into a spare, swapped in whole. */
 static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int unseen, cu_error *err)
 {
     cu_ground_map *m = &r->ground[g];
@@ -136,7 +164,8 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
     if (m->sig && !cu_sun_apart(m->sun, sd, CU_SUN_MAP_STEP))
         sd = m->sun;
     uint64_t pos, dens;
-    ground_hashes(r, g, drift, sd, c, S, &pos, &dens);
+    int reg[4];
+    ground_hashes(r, g, drift, sd, c, S, &pos, &dens, reg);
     uint64_t sig = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_bits(pos, dens), c.x), c.z), S);
     sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
     if (!m->map.fbo && cu_pass_shadow_target(&r->gl, size, &m->map, err))
@@ -148,13 +177,26 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
     int same_square = c.x == m->at.x && c.z == m->at.y && S == m->at.z;
     int moved = (same_square && pos != m->scene) || hypot(c.x - m->at.x, c.z - m->at.y) > 0.25 * S ||
                 fabs(S - m->at.z) > 0.25 * S;
-    if (sig != m->sig && (bands == 1 || !m->sig || jumped || lagged || moved || unseen)) {
+    /* Only densities changed (life cycles): the texels of those clouds' shadows made again at once, when they are
+     * no more than a band's worth (a time-lapse of a field changes a few clouds a frame: a band of the whole map, 31
+     * ms on field_noon, for a cloud or two). */
+    long area = (long)(reg[2] - reg[0]) * (reg[3] - reg[1]);
+    int patch = sig != m->sig && m->sig && m->band == 0 && same_square && pos == m->scene && same_vec(sd, m->sun) &&
+                !jumped && (reg[2] <= reg[0] || reg[3] <= reg[1] ||
+                            area * (bands == 1 || unseen ? 1 : bands) <= (long)size * size);
+    if (patch) {
+        m->sig = sig;
+        m->patches++;
+        if (reg[2] > reg[0] && reg[3] > reg[1])
+            draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, reg, -1);
+    } else if (sig != m->sig && (bands == 1 || !m->sig || jumped || lagged || moved || unseen)) {
         m->band = 0; /* a band under way is overtaken */
         m->sig = sig;
         m->scene = pos;
         m->sun = sd;
         m->at = v3(c.x, c.z, S);
-        draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, 0, size);
+        const int whole[4] = {0, 0, size, size};
+        draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, whole, -1);
     } else if (sig != m->sig || m->band > 0) {
         if (m->band == 0) {
             if (!m->next.fbo && cu_pass_shadow_target(&r->gl, size, &m->next, err))
@@ -166,8 +208,8 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
         }
         vec3 at = m->next_at;
         int b = m->band++;
-        draw_ground(r, g, &m->next, m->next_sun, v3(at.x + drift.x, 0, at.y + drift.z), at.z, size * b / bands,
-                    size * (b + 1) / bands);
+        const int rows[4] = {0, size * b / bands, size, size * (b + 1) / bands};
+        draw_ground(r, g, &m->next, m->next_sun, v3(at.x + drift.x, 0, at.y + drift.z), at.z, rows, b);
         if (m->band == bands) { /* the last band: the new map in, the old one the next spare */
             cu_target t = m->map;
             m->map = m->next;
@@ -177,6 +219,9 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
             m->sun = m->next_sun;
             m->at = m->next_at;
             m->band = 0;
+            for (int j = 0; j < r->clouds.n; j++)
+                if (map_of(r, &r->clouds.slot[j]) == g)
+                    r->clouds.slot[j].ground_q = r->clouds.slot[j].ground_next_q;
             if (sig != m->sig)
                 r->maps_deferred = 1; /* the sun or the clouds moved on while the bands were drawn */
         } else {

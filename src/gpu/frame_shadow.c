@@ -90,7 +90,8 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     if (sig == sl->shadow_sig)
         return 0;
     sl->shadow_sig = sig;
-    cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size, 0, size);
+    const int whole[4] = {0, 0, size, size};
+    cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size, whole);
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *c = &r->clouds.slot[j];
         vec3 d;

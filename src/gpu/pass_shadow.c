@@ -52,15 +52,15 @@ int cu_pass_shadow_target(const cu_gl *gl, int size, cu_target *t, cu_error *err
     return 0;
 }
 
-void cu_pass_shadow_begin(const cu_pass_shadow *p, const cu_gpu_scene *ctx, const cu_target *t, int size, int y0,
-                          int y1)
+void cu_pass_shadow_begin(const cu_pass_shadow *p, const cu_gpu_scene *ctx, const cu_target *t, int size,
+                          const int reg[4])
 {
     const cu_gl *gl = ctx->gl;
     gl->BindFramebuffer(GL_FRAMEBUFFER, t->fbo);
     gl->Viewport(0, 0, size, size);
     gl->Disable(GL_DEPTH_TEST);
     gl->Enable(GL_SCISSOR_TEST);
-    gl->Scissor(0, y0, size, y1 - y0);
+    gl->Scissor(reg[0], reg[1], reg[2] - reg[0], reg[3] - reg[1]);
     gl->ClearColor(0, 0, 0, 0);
     gl->Clear(GL_COLOR_BUFFER_BIT);
     gl->Enable(GL_BLEND);

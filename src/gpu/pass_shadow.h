@@ -18,10 +18,10 @@ int  cu_pass_shadow_create(cu_pass_shadow *p, const cu_gpu_scene *ctx, const cha
 void cu_pass_shadow_destroy(cu_pass_shadow *p, const cu_gl *gl);
 /* A target of size x size for optical depths (RGBA16F: blendable; 0 when the context cannot render to it). */
 int  cu_pass_shadow_target(const cu_gl *gl, int size, cu_target *t, cu_error *err);
-/* Clears rows [y0, y1) of t (bound) to zero optical depth, for the casters to add into (each caster's rectangle is
- * its own; the caller clips it to those rows). */
-void cu_pass_shadow_begin(const cu_pass_shadow *p, const cu_gpu_scene *ctx, const cu_target *t, int size, int y0,
-                          int y1);
+/* Clears the texels reg = {x0, y0, x1, y1} of t (bound) to zero optical depth, for the casters to add into (each
+ * caster's rectangle is its own; the caller clips it to reg). */
+void cu_pass_shadow_begin(const cu_pass_shadow *p, const cu_gpu_scene *ctx, const cu_target *t, int size,
+                          const int reg[4]);
 /* Adds caster's optical depth along -sun_dir into the texels [x0, x1) x [y0, y1) of the bound target, whose texel
  * (u, v) has its ray through origin + ax (2u - 1) + ay (2v - 1) (world offsets from the caster's origin, start before
  * the caster along the sun). ke: the caster's core extinction now. */

@@ -30,6 +30,7 @@ typedef struct cu_ground_map {
     uint64_t next_sig, next_scene;
     vec3 next_sun, next_at;
     int band;             /* its bands drawn so far (0: none under way) */
+    long patches;         /* times only the texels of clouds whose density changed were made again */
 } cu_ground_map;
 
 struct cu_renderer {

@@ -1,8 +1,9 @@
-/* tests/gpu/test_ground_drift.c: the clouds' shadow on the ground as time runs (src/gpu/frame_shadow.c). Clouds on
+/* tests/gpu/test_ground_drift.c: the clouds' shadow on the ground as time runs (src/gpu/frame_ground.c). Clouds on
  * one wind: the ground's map is made in a frame drifting with them, so each frame is the whole render of a fresh
  * scene at that time, bit for bit, without the map being made again; a cloud's changing density (its life cycle) has
- * the map made a band a frame, and the picture settles to the whole render when time stops; clouds on two winds
- * get a drifting map each; with more winds than maps the last map holds the rest and is made whole every frame. */
+ * only its shadow's texels made again, each frame still the whole render; with the sun creeping too the map is made
+ * in bands, and the picture settles to the whole render when both stop; clouds on two winds get a drifting map each;
+ * with more winds than maps the last map holds the rest and is made whole every frame. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -169,9 +170,12 @@ static void test_one_wind_moves_the_map_not_remakes_it(void **st)
     tr_close(&c);
 }
 
-/* A forming cloud drifting on the wind: its density grows, the ground's map is made again a band a frame (never
- * whole), and when time stops the picture settles to the whole render at that time, bit for bit. */
-static void test_growing_cloud_bands_and_settles(void **st)
+/* A forming cloud drifting on the wind: its density grows, and the ground's map has only the texels of its shadow
+ * made again (never whole, no band), so that every frame is the whole render of a fresh scene at that time, bit for
+ * bit. Then the sun creeps too: the map is made again in bands, of the densities of the frames each band was drawn
+ * in; when time and the sun stop the picture settles to the whole render, bit for bit (the cloud's texels made again
+ * once more where its bands held different densities). */
+static void test_growing_cloud_patches_and_settles(void **st)
 {
     (void)st;
     static const char *const sets[] = {VIEW, "cloud.wind=20 0", "cloud.lifetime=1000", "cloud.life_phase=0.05",
@@ -179,32 +183,63 @@ static void test_growing_cloud_bands_and_settles(void **st)
     tr_ctx c;
     if (tr_open(&c, &cu_display_egl, W, H, 1))
         fail_msg("%s", c.err);
-    float *got = malloc(sizeof(float) * NPX * 2), *ref = got + NPX;
+    float *got = malloc(sizeof(float) * NPX * (FRAMES + 2)), *refs = got + NPX, *ref = refs;
     const double dt = 4.0;
-    fresh_render(&c, sets, NULL, dt * FRAMES, ref);
+    double worst = 0;
+    int whole = 0, banded = 0;
+    long patches = 0;
+    for (int k = 1; k <= FRAMES; k++) /* first: each render replaces the renderer's scene */
+        fresh_render(&c, sets, NULL, dt * k, refs + NPX * (size_t)k);
     fresh_render(&c, sets, NULL, 0.0, got);
-    int banded = 0, whole = 0;
     for (int k = 1; k <= FRAMES; k++) {
         uint64_t sig = c.r->ground[0].sig;
-        int band = c.r->ground[0].band;
+        long p = c.r->ground[0].patches;
         at_time(&c, dt * k);
-        whole += c.r->ground[0].sig != sig && !(band == 3 && c.r->ground[0].band == 0);
+        patches += c.r->ground[0].patches - p;
+        whole += c.r->ground[0].sig != sig && c.r->ground[0].patches == p;
+        banded += c.r->ground[0].band > 0;
+        tr_read_rgbf(&c, got);
+        worst = fmax(worst, rel_diff(got, refs + NPX * (size_t)k));
+    }
+    printf("a forming cloud, 4 s a frame: %d whole remakes, %ld patches, %d frames with a band; against the whole "
+           "render of each frame %.3g\n", whole, patches, banded, worst);
+    assert_int_equal(whole, 0);
+    assert_int_equal(banded, 0);
+    assert_true(patches >= 3);
+    assert_true(worst == 0.0);
+
+    /* the sun creeping 0.2 degrees a frame as well: bands, each of its frame's densities */
+    double el, az;
+    cu_renderer_get_sun(c.r, &el, &az);
+    cu_error e;
+    banded = 0;
+    double t = dt * FRAMES;
+    for (int k = 1; k <= FRAMES; k++) {
+        t += dt;
+        if (cu_renderer_set_sun(c.r, el + 0.2 * k, az, &e))
+            fail_msg("%s", e.msg);
+        at_time(&c, t);
         banded += c.r->ground[0].band > 0;
     }
     int settled_after = -1;
-    for (int f = 1; f <= 8 && settled_after < 0; f++) {
+    for (int f = 1; f <= 12 && settled_after < 0; f++) {
         if (tr_render_again(&c))
             fail_msg("%s", c.err);
         if (cu_renderer_settled(c.r))
             settled_after = f;
     }
+    char sun_el[64], sun_az[64];
+    snprintf(sun_el, sizeof sun_el, "sun.elevation=%.17g", el + 0.2 * FRAMES);
+    snprintf(sun_az, sizeof sun_az, "sun.azimuth=%.17g", az);
+    const char *const sets2[] = {VIEW, "cloud.wind=20 0", "cloud.lifetime=1000", "cloud.life_phase=0.05", sun_el,
+                                 sun_az, NULL};
     tr_read_rgbf(&c, got);
+    fresh_render(&c, sets2, NULL, t, ref);
     double d = rel_diff(got, ref);
-    printf("a forming cloud, 4 s a frame: %d whole remakes, %d frames with a band; settled after %d frames, against "
-           "the whole render %.3g\n", whole, banded, settled_after, d);
-    assert_int_equal(whole, 0);
+    printf("and the sun creeping 0.2 degrees a frame: %d frames with a band; settled after %d frames, against the "
+           "whole render %.3g\n", banded, settled_after, d);
     assert_true(banded >= 3);
-    assert_true(settled_after > 0 && settled_after <= 8);
+    assert_true(settled_after > 0 && settled_after <= 12);
     assert_true(d == 0.0);
     free(got);
     tr_close(&c);
@@ -269,7 +304,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_wind_moves_the_map_not_remakes_it),
-        cmocka_unit_test(test_growing_cloud_bands_and_settles),
+        cmocka_unit_test(test_growing_cloud_patches_and_settles),
         cmocka_unit_test(test_two_winds_two_maps),
         cmocka_unit_test(test_more_winds_than_maps),
     };
