@@ -6,8 +6,18 @@
 #include "frame.h"
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #define GROUND_TEXELS 512 /* a map's side */
+#define PATCHES_MAX 32    /* clouds whose density changed, made again one by one; more: the map in bands */
+
+/* The texels of the clouds whose density is not the one a map holds, a rectangle each ({x0, y0, x1, y1}): a field's
+ * clouds lie apart, and the box about all of them would be most of the map. */
+typedef struct patch_list {
+    int n;                /* PATCHES_MAX + 1: more than that */
+    long area;            /* texels, overlaps counted twice */
+    int rect[PATCHES_MAX][4];
+} patch_list;
 
 static int same_vec(vec3 a, vec3 b) /* the same vector, to the bit: a wind, a sun */
 {
@@ -99,15 +109,14 @@ static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3
 }
 
 /* What the square of side S about c (x, z in map g's drifting frame) shows of its clouds for the sun sd: the
- * positions (in that frame) of the clouds whose shadows can reach it, and their densities; and in reg the texels of
- * those whose density is not the one the map holds (empty: x1 <= x0). A cloud elsewhere cannot change a texel of the
- * map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
+ * positions (in that frame) of the clouds whose shadows can reach it, and their densities; and in pl the texels of
+ * those whose density is not the one the map holds. A cloud elsewhere cannot change a texel of the map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
 static void ground_hashes(const cu_renderer *r, int g, vec3 drift, vec3 sd, vec3 c, double S, uint64_t *pos,
-                          uint64_t *dens, int reg[4])
+                          uint64_t *dens, patch_list *pl)
 {
     *pos = *dens = 1469598103934665603ull;
-    reg[0] = reg[1] = GROUND_TEXELS;
-    reg[2] = reg[3] = 0;
+    pl->n = 0;
+    pl->area = 0;
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *cl = &r->clouds.slot[j];
         if (cl->cloud.n == 0 || !(cl->ke_rest > 0) || map_of(r, cl) != g)
@@ -121,11 +130,12 @@ static void ground_hashes(const cu_renderer *r, int g, vec3 drift, vec3 sd, vec3
         *pos = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_add(*pos, j), 4.0 * o.x + 0.382), 4.0 * o.y + 0.382),
                           4.0 * o.z + 0.382);
         *dens = cu_sig_add(cu_sig_add(*dens, j), dens_q(cl));
-        if (dens_q(cl) != cl->ground_q)
-            for (int k = 0; k < 2; k++) {
-                reg[k] = rect[k] < reg[k] ? rect[k] : reg[k];
-                reg[k + 2] = rect[k + 2] > reg[k + 2] ? rect[k + 2] : reg[k + 2];
-            }
+        if (dens_q(cl) != cl->ground_q && pl->n <= PATCHES_MAX) {
+            if (pl->n < PATCHES_MAX)
+                memcpy(pl->rect[pl->n], rect, sizeof rect);
+            pl->n++;
+            pl->area += (long)(rect[2] - rect[0]) * (rect[3] - rect[1]);
+        }
     }
 }
 
@@ -164,8 +174,8 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
     if (m->sig && !cu_sun_apart(m->sun, sd, CU_SUN_MAP_STEP))
         sd = m->sun;
     uint64_t pos, dens;
-    int reg[4];
-    ground_hashes(r, g, drift, sd, c, S, &pos, &dens, reg);
+    patch_list pl;
+    ground_hashes(r, g, drift, sd, c, S, &pos, &dens, &pl);
     uint64_t sig = cu_sig_add(cu_sig_add(cu_sig_add(cu_sig_bits(pos, dens), c.x), c.z), S);
     sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
     if (!m->map.fbo && cu_pass_shadow_target(&r->gl, size, &m->map, err))
@@ -178,17 +188,15 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
     int moved = (same_square && pos != m->scene) || hypot(c.x - m->at.x, c.z - m->at.y) > 0.25 * S ||
                 fabs(S - m->at.z) > 0.25 * S;
     /* Only densities changed (life cycles): the texels of those clouds' shadows made again at once, when they are
-     * no more than a band's worth (a time-lapse of a field changes a few clouds a frame: a band of the whole map, 31
-     * ms on field_noon, for a cloud or two). */
-    long area = (long)(reg[2] - reg[0]) * (reg[3] - reg[1]);
+     * no more than a band's worth (a time-lapse of a field changes a few clouds a frame: a band of the whole map, 28
+     * ms on field_noon, for a few clouds). */
     int patch = sig != m->sig && m->sig && m->band == 0 && same_square && pos == m->scene && same_vec(sd, m->sun) &&
-                !jumped && (reg[2] <= reg[0] || reg[3] <= reg[1] ||
-                            area * (bands == 1 || unseen ? 1 : bands) <= (long)size * size);
+                !jumped && pl.n <= PATCHES_MAX && pl.area * (bands == 1 || unseen ? 1 : bands) <= (long)size * size;
     if (patch) {
         m->sig = sig;
         m->patches++;
-        if (reg[2] > reg[0] && reg[3] > reg[1])
-            draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, reg, -1);
+        for (int i = 0; i < pl.n; i++)
+            draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, pl.rect[i], -1);
     } else if (sig != m->sig && (bands == 1 || !m->sig || jumped || lagged || moved || unseen)) {
         m->band = 0; /* a band under way is overtaken */
         m->sig = sig;
