@@ -141,10 +141,10 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("quality", "sun_map_size", 1, "128", 16, 4096, 0, "texels",
         "sun maps (opacity map, or front and back depth) per side", S(sun_map_size)),
     INT("quality", "sun_map_frames", 1, "4", 1, 16, 0, "frames",
-        "a sun that creeps (or noise that boils on) has a cloud's maps made again over this many frames, a band of "
-        "their rows a frame, and swapped in whole: a sun turned every frame costs this fraction of the maps a frame, "
-        "and lights the cloud up to 2N - 1 frames late; a jump of the sun (over 1 degree in a frame) remakes them at "
-        "once (1: whole maps in one frame)", S(sun_map_frames)),
+        "a sun that creeps (or noise that boils on) has a cloud's maps, and the ground's shadow maps, made again over "
+        "this many frames, a band of rows a frame, swapped in whole: a sun turned every frame costs this fraction of "
+        "the maps a frame and lights up to 2N - 1 frames late; a jump of the sun (over 1 degree in a frame) remakes "
+        "them at once (1: whole maps in one frame)", S(sun_map_frames)),
     INT("quality", "lod_pixels", 1, "48", 0, 16384, 0, "pixels",
         "in a field of clouds, one narrower than this on screen is marched with one segment fewer and two noise "
         "octaves (0: never)", S(lod_pixels)),
