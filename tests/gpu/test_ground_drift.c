@@ -2,7 +2,8 @@
  * one wind: the ground's map is made in a frame drifting with them, so each frame is the whole render of a fresh
  * scene at that time, bit for bit, without the map being made again; a cloud's changing density (its life cycle) has
  * only its shadow's texels made again, each frame still the whole render; with the sun creeping too the map is made
- * in bands, and the picture settles to the whole render when both stop; clouds on two winds get a drifting map each;
+ * in bands, and the picture settles to the whole render when both stop (also when a cloud's shadow straddles two
+ * bands drawn at different densities); clouds on two winds get a drifting map each;
  * with more winds than maps the last map holds the rest and is made whole every frame. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -245,6 +246,54 @@ static void test_growing_cloud_patches_and_settles(void **st)
     tr_close(&c);
 }
 
+/* A wide, flat cloud growing straight above the ground map's centre (the camera 300 m up, looking down at its
+ * shadow), the shadow across the boundary of the map's second and third bands: the sun steps once, so the map is
+ * made again in bands, and the cloud grows between them, so its shadow is drawn at two densities. Time then stops:
+ * the map must know the cloud is mixed and make its texels again (a patch), or the picture keeps the two halves of
+ * its shadow (0.23 off, with the cloud taken as of the last band's density). */
+static void test_bands_of_different_densities(void **st)
+{
+    (void)st;
+    char text[1024];
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    float *got = malloc(sizeof(float) * NPX * 3), *ref = got + NPX, *none = ref + NPX;
+    const double dt = 8.0;
+    for (int pass = 0; pass < 2; pass++) {
+        snprintf(text, sizeof text, "[camera]\nposition = 0 300 450\nlook_at = 0 0 0\nfov = 50\n[sun]\n"
+                 "elevation = %.17g\nazimuth = 180\n[ms]\nclosure = off\n[quality]\nsun_map_frames = 4\n"
+                 "[cloud]\nboil = 0\nlifetime = 200\nlife_phase = 0.02\n[ellipsoid]\ncenter = 0 900 0\n"
+                 "radii = 1500 80 120\n", pass ? 85.2 : 85.0);
+        fresh_render(&c, NULL, text, pass ? dt * 4 : 0.0, pass ? ref : none);
+        if (pass)
+            break;
+        long patches = c.r->ground[0].patches;
+        int banded = 0;
+        for (int k = 1; k <= 4; k++) {
+            cu_error e;
+            if (k == 1 && cu_renderer_set_sun(c.r, 85.2, 180, &e))
+                fail_msg("%s", e.msg);
+            at_time(&c, dt * k);
+            banded += c.r->ground[0].band > 0;
+        }
+        for (int f = 0; f < 4; f++)
+            if (tr_render_again(&c))
+                fail_msg("%s", c.err);
+        tr_read_rgbf(&c, got);
+        printf("bands of different densities: %d frames with a band, %ld patches after\n", banded,
+               c.r->ground[0].patches - patches);
+        assert_true(banded >= 3);
+        assert_true(c.r->ground[0].patches > patches);
+    }
+    double d = rel_diff(got, ref), shown = rel_diff(none, ref);
+    printf("against the whole render %.3g (the shadow itself: %.3g)\n", d, shown);
+    assert_true(shown > 0.01);
+    assert_true(d == 0.0);
+    free(got);
+    tr_close(&c);
+}
+
 /* The clouds on winds of their own at time t against the same clouds standing where their winds carried them, no
  * wind: the drifting maps read where their clouds are (the maps lie on other grids of texels, as above). */
 static double winds_follow(int clouds, double t)
@@ -305,6 +354,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_wind_moves_the_map_not_remakes_it),
         cmocka_unit_test(test_growing_cloud_patches_and_settles),
+        cmocka_unit_test(test_bands_of_different_densities),
         cmocka_unit_test(test_two_winds_two_maps),
         cmocka_unit_test(test_more_winds_than_maps),
     };
