@@ -110,7 +110,8 @@ static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3
 
 /* What the square of side S about c (x, z in map g's drifting frame) shows of its clouds for the sun sd: the
  * positions (in that frame) of the clouds whose shadows can reach it, and their densities; and in pl the texels of
- * those whose density is not the one the map holds. A cloud elsewhere cannot change a texel of the map. The offset keeps a scene's round numbers off the quantiser's rounding edges. */
+ * those whose density is not the one the map holds. A cloud elsewhere cannot change a texel of the map. The offset
+ * keeps a scene's round numbers off the quantiser's rounding edges. */
 static void ground_hashes(const cu_renderer *r, int g, vec3 drift, vec3 sd, vec3 c, double S, uint64_t *pos,
                           uint64_t *dens, patch_list *pl)
 {
