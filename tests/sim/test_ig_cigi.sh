@@ -118,7 +118,8 @@ else t_fail hostile_datagrams_counted_and_skipped "$stats; last frame: $il"; fi
 # The frames the bursts' IG Controls (no timestamp) had the IG draw again, on their own: at the host's time (all its
 # timestamps are 0), never the IG's own clock: a jump there and back moves every cloud, and the frame after it is
 # not the scene file's picture until the clouds' maps are made again.
-reps=$(grep -c '^repeat before' "$OUT/host.log"); moved=$(grep '^ig frame=' "$OUT/ig.out" | grep -v ' time=0.000 ' | head -2)
+reps=$(grep -c '^repeat before' "$OUT/host.log")
+moved=$(grep '^ig frame=' "$OUT/ig.out" | grep -v ' time=0.000 ' | head -2)
 if [ "$reps" -ge 1 ] && [ -z "$moved" ]; then t_ok frames_without_timestamp_keep_the_host_time
 else t_fail frames_without_timestamp_keep_the_host_time "$reps frames drawn again; at another time: '$moved'"; fi
 lat=$(grep '^\[ig\] latency' "$OUT/ig.out")
