@@ -41,7 +41,9 @@ typedef struct cu_cloud_slot {
     int next_zenith;           /* the zenith's slab map is made again too (the noise boiled on) */
     cu_target shadow;          /* other clouds' optical depth over its sun-map square (pass_shadow.c) */
     int has_shadow;            /* this frame: some other cloud shades it, and shadow holds their optical depth */
-    uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities and offsets, the sun */
+    uint64_t shadow_sig;       /* what shadow was made for: the casters, their densities, where they are (to a
+                                * radius of this cloud), the sun, the map */
+    double shadow_time;        /* the scene's time then: its casters on other winds have moved on since */
     int ground_q;              /* its density in 64ths as its ground map holds its shadow (frame_ground.c) */
     int ground_next_q;         /* ... as the map made again in bands does (-1: bands of different densities) */
     cu_cloud_msd msd;          /* ms.mode = diffusion: its diffusion grid (pass_msd.c) */

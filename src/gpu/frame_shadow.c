@@ -51,8 +51,11 @@ static int casts_on(const cu_renderer *r, int i, int j, vec3 sd, vec3 *d, double
 
 /* Cloud i's shadow from the others: the casters are the clouds nearer the sun whose discs seen from the sun overlap
  * its own (for clouds that do not interpenetrate, every sun ray meets a caster before this cloud); their optical
- * depths along the sun add up over its sun-map square. Remade when the casters, their densities, their offsets or
- * the sun changed. */
+ * depths along the sun add up over its sun-map square. Remade when the casters, their densities or the sun changed,
+ * or when a caster on another wind has moved an eighth of a texel of the map since it was made. A caster moves
+ * against this cloud only by their winds (their offsets are hashed only to a radius of this cloud, to catch a caster
+ * wrapping around the sky's square), so "moved" is the fastest relative wind times the time since: every caster
+ * crossing its own grid of eighths remade a map with a dozen casters on another wind most frames (kiosk_day). */
 int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
@@ -63,12 +66,11 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     cu_frame_bind_cloud(r, sl);
     vec3 sd = ctx->sun_dir, rt = ctx->sun_right, up = ctx->sun_up;
     double Ri = ctx->sun_R;
+    int size = sl->map_size / 2 > 16 ? sl->map_size / 2 : 16;
     uint64_t sig = 1469598103934665603ull;
     sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, 1e6 * sd.x), 1e6 * sd.y), 1e6 * sd.z);
-    int size = sl->map_size / 2 > 16 ? sl->map_size / 2 : 16;
-    /* The casters' offsets in eighths of a texel (the map's side is 2 Ri): clouds on two winds move apart every frame,
-     * and a shadow cannot show less than its texels do (0.25 m steps remade 58 maps a frame on kiosk_day). */
-    double q = 4.0 * size / Ri;
+    sig = cu_sig_add(cu_sig_add(sig, size), 1e3 * Ri);
+    double fastest = 0; /* m/s: the fastest caster against this cloud */
     int casters = 0;
     for (int j = 0; j < r->clouds.n; j++) {
         const cu_cloud_slot *c = &r->clouds.slot[j];
@@ -78,7 +80,8 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
             continue;
         casters++;
         sig = cu_sig_add(cu_sig_add(sig, j), 64.0 * c->factor);
-        sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, q * d.x), q * d.y), q * d.z);
+        sig = cu_sig_add(cu_sig_add(cu_sig_add(sig, d.x / Ri + 0.382), d.y / Ri + 0.382), d.z / Ri + 0.382);
+        fastest = fmax(fastest, v3_len(v3_sub(c->wind, sl->wind)));
     }
     if (casters == 0)
         return 0;
@@ -87,9 +90,10 @@ int cu_frame_cloud_shadow(cu_renderer *r, int i, cu_error *err)
     if (!sl->shadow.fbo && cu_pass_shadow_target(&r->gl, size, &sl->shadow, err))
         return 1;
     sl->has_shadow = 1;
-    if (sig == sl->shadow_sig)
+    if (sig == sl->shadow_sig && fastest * fabs(r->time - sl->shadow_time) <= Ri / (4.0 * size))
         return 0;
     sl->shadow_sig = sig;
+    sl->shadow_time = r->time;
     const int whole[4] = {0, 0, size, size};
     cu_pass_shadow_begin(&r->pass_shadow, ctx, &sl->shadow, size, whole);
     for (int j = 0; j < r->clouds.n; j++) {

@@ -1,10 +1,12 @@
-/* tests/gpu/test_ground_drift.c: the clouds' shadow on the ground as time runs (src/gpu/frame_ground.c). Clouds on
- * one wind: the ground's map is made in a frame drifting with them, so each frame is the whole render of a fresh
- * scene at that time, bit for bit, without the map being made again; a cloud's changing density (its life cycle) has
- * only its shadow's texels made again, each frame still the whole render; with the sun creeping too the map is made
- * in bands, and the picture settles to the whole render when both stop (also when a cloud's shadow straddles two
- * bands drawn at different densities); clouds on two winds get a drifting map each;
- * with more winds than maps the last map holds the rest and is made whole every frame. */
+/* tests/gpu/test_ground_drift.c: the clouds' shadows as time runs, on the ground (src/gpu/frame_ground.c) and on each
+ * other (frame_shadow.c). Clouds on one wind: the ground's map is made in a frame drifting with them, so each frame
+ * is the whole render of a fresh scene at that time, bit for bit, without the map being made again; a cloud's
+ * changing density (its life cycle) has only its shadow's texels made again, each frame still the whole render; with
+ * the sun creeping too the map is made in bands, and the picture settles to the whole render when both stop (also
+ * when a cloud's shadow straddles two bands drawn at different densities); clouds on two winds get a drifting map
+ * each; with more winds than maps the last map holds the rest and is made whole every frame. A cloud shaded by
+ * clouds on another wind has its map made again each time they have moved an eighth of its texel, and then it is the
+ * whole render. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -294,6 +296,63 @@ static void test_bands_of_different_densities(void **st)
     tr_close(&c);
 }
 
+/* Shadows between clouds on two winds (frame_shadow.c): three casters on one wind drifting 0.3 of an eighth of a
+ * texel of the shaded cloud's map a frame above a still cloud. Its map is made again when they have moved an eighth
+ * of a texel since: every third or fourth frame (not whenever one of them crosses a grid of eighths of its own: 3x as
+ * often), and each such frame is the whole render at its time, bit for bit; between, it lags by a fraction of that. */
+static void test_cloud_shadow_follows_other_wind(void **st)
+{
+    (void)st;
+    enum { N = 16 };
+    const double v = 10.0; /* m/s, the caster's wind */
+    char text[1024];
+    snprintf(text, sizeof text, "[camera]\nposition = 0 300 1500\nlook_at = 0 400 0\nfov = 50\n[sun]\n"
+             "elevation = 89\nazimuth = 180\n[ms]\nclosure = off\n[cloud]\nboil = 0\n[ellipsoid]\n"
+             "center = 0 300 0\nradii = 300 150 250\n[cloud]\nwind = %g 0\n[ellipsoid]\n"
+             "center = -150 1000 -100\nradii = 90 60 80\n[cloud]\nwind = %g 0\n[ellipsoid]\n"
+             "center = 61.7 1050 80\nradii = 80 60 90\n[cloud]\nwind = %g 0\n[ellipsoid]\n"
+             "center = 203.1 1000 -50\nradii = 90 60 80\n", v, v, v);
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    float *got = malloc(sizeof(float) * NPX * (N + 3)), *refs = got + NPX, *later = refs + NPX * (N + 1);
+    fresh_render(&c, NULL, text, 0.0, got);
+    const cu_cloud_slot *sl = &c.r->clouds.slot[0];
+    /* the map's radius (sunmap.c: cu_sun_radius) and side (frame_shadow.c) */
+    double Ri = sl->cloud.bound_radius * 1.01 + 1.0;
+    double step = Ri / (4.0 * (sl->map_size / 2 > 16 ? sl->map_size / 2 : 16));
+    double dt = 0.3 * step / v;
+    for (int k = 1; k <= N; k++) /* first: each render replaces the renderer's scene */
+        fresh_render(&c, NULL, text, dt * k, refs + NPX * (size_t)k);
+    fresh_render(&c, NULL, text, 0.0, got);
+    fresh_render(&c, NULL, text, step / v, later);
+    double one_step = rel_diff(got, later), worst_between = 0, worst_remade = 0;
+    fresh_render(&c, NULL, text, 0.0, got);
+    sl = &c.r->clouds.slot[0];
+    int remakes = 0;
+    for (int k = 1; k <= N; k++) {
+        double made = sl->shadow_time;
+        at_time(&c, dt * k);
+        tr_read_rgbf(&c, got);
+        double d = rel_diff(got, refs + NPX * (size_t)k);
+        if (sl->shadow_time != made) {
+            remakes++;
+            worst_remade = fmax(worst_remade, d);
+        } else {
+            worst_between = fmax(worst_between, d);
+        }
+    }
+    printf("casters on another wind, 0.3 of a step a frame: %d remakes in %d frames (an eighth of a texel: %.2f m); "
+           "remade frames against the whole render %.3g; others %.3g, against %.3g for a whole step\n", remakes, N,
+           step, worst_remade, worst_between, one_step);
+    assert_true(sl->has_shadow);
+    assert_true(remakes >= 3 && remakes <= 5);
+    assert_true(worst_remade == 0.0);
+    assert_true(one_step > 0.0 && worst_between < one_step);
+    free(got);
+    tr_close(&c);
+}
+
 /* The clouds on winds of their own at time t against the same clouds standing where their winds carried them, no
  * wind: the drifting maps read where their clouds are (the maps lie on other grids of texels, as above). */
 static double winds_follow(int clouds, double t)
@@ -355,6 +414,7 @@ int main(void)
         cmocka_unit_test(test_one_wind_moves_the_map_not_remakes_it),
         cmocka_unit_test(test_growing_cloud_patches_and_settles),
         cmocka_unit_test(test_bands_of_different_densities),
+        cmocka_unit_test(test_cloud_shadow_follows_other_wind),
         cmocka_unit_test(test_two_winds_two_maps),
         cmocka_unit_test(test_more_winds_than_maps),
     };
