@@ -48,6 +48,12 @@ out vec4 o_color;
 #ifndef SKY_TONEMAP
 #define SKY_TONEMAP 0
 #endif
+// SKY_PART (pass_sky.c): 0 draws rows that hold the horizon, 1 rows of sky alone, 2 rows of ground alone. A software
+// rasteriser (llvmpipe, Mesa 22) runs both sides of a branch on every pixel, so rows without the horizon take a
+// program without it.
+#ifndef SKY_PART
+#define SKY_PART 0
+#endif
 #ifndef SKY_COMPOSITE
 #define SKY_COMPOSITE 0
 #endif
@@ -93,29 +99,38 @@ vec3 xyY_to_rgb(float x, float y, float Y)
 }
 #endif
 
+#if !SKY_CONSTANT
+// Above the horizon: the Perez sky and the sun's disk.
+vec3 sky_above(vec3 dir)
+{
+    float t_zenith = sqrt(dir.y), t_sun = sqrt(clamp(0.5 - 0.5 * dot(dir, u_sun_dir), 0.0, 1.0));
+    vec3 Yxy = table(t_zenith, 0) * table(t_sun, 1);
+    vec3 L = max(xyY_to_rgb(Yxy.y, Yxy.z, Yxy.x), vec3(0.0));
+    // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
+    if (dot(dir, u_sun_dir) > 0.99998917)
+        L += u_sun_irr / 6.8e-5;
+    return L;
+}
+#endif
+
 void main()
 {
     // The ray's direction from two depths (a perspective ray through the origin, or an orthographic view's one).
     vec3 dir = normalize(v_far.xyz / v_far.w - v_near.xyz / v_near.w);
-    vec3 L;
 #if SKY_CONSTANT
-    L = u_sky_color; // uniform radiance from every direction, below the horizon too (matches other renderers)
-    {
+    vec3 L = u_sky_color; // uniform radiance from every direction, below the horizon too (matches other renderers)
+    if (dot(dir, u_sun_dir) > 0.99998917)
+        L += u_sun_irr / 6.8e-5;
+#elif SKY_PART == 1
+    vec3 L = sky_above(dir);
+#elif SKY_PART == 2
+    vec3 L = ground(dir);
 #else
-    if (dir.y < 0.0) {
-        L = ground(dir);
-    } else {
-        float t_zenith = sqrt(dir.y), t_sun = sqrt(clamp(0.5 - 0.5 * dot(dir, u_sun_dir), 0.0, 1.0));
-        vec3 Yxy = table(t_zenith, 0) * table(t_sun, 1);
-        L = max(xyY_to_rgb(Yxy.y, Yxy.z, Yxy.x), vec3(0.0));
+    vec3 L = dir.y < 0.0 ? ground(dir) : sky_above(dir);
 #endif
-        // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
-        if (dot(dir, u_sun_dir) > 0.99998917)
-            L += u_sun_irr / 6.8e-5;
-    }
     o_color = vec4(min(L * u_out_scale, vec3(u_out_max)), 1.0);
 #if SKY_COMPOSITE
-    vec4 c = u_cloud_factor == 1.0 ? texelFetch(u_clouds, ivec2(gl_FragCoord.xy), 0) : clouds_at(gl_FragCoord.xy);
+    vec4 c = clouds_at(gl_FragCoord.xy); // at a factor of 1 the weights are exactly 1 and 0: the pixel's texel
     o_color.rgb = c.rgb + (1.0 - c.a) * o_color.rgb;
 #endif
 #if SKY_TONEMAP

@@ -151,7 +151,7 @@ static void temporal_frame_identity(cu_gpu_scene *ctx)
 /* quality.temporal_grid for this frame: G, or 1 where the grid cannot serve (said once a scene). */
 static int temporal_grid(cu_renderer *r, const cu_frame *f, int visible)
 {
-    if (r->fb.g < 2 || !r->pass_temporal.prog || visible == 0)
+    if (r->fb.g < 2 || !r->pass_temporal.prog[0] || visible == 0)
         return 1;
     const char *why = f->depth_texture ? "the host gives its depth, which the reprojection would not follow"
                       : r->pass_tonemap.hdr.format == GL_RGBA8 ? "no float render target to hold distances"
@@ -255,7 +255,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->BindFramebuffer(GL_FRAMEBUFFER, f->fbo);
         gl->Viewport(0, 0, f->width, f->height);
         gl->Disable(GL_BLEND);
-        cu_pass_sky_draw(&r->pass_sky, ctx, 1);
+        if (cu_pass_sky_draw(&r->pass_sky, ctx, 1, err))
+            return 1;
         ctx->camera.visible = 0;
         cu_profile_mark(r, CU_PASS_SKY);
         GLenum e = gl->GetError();
@@ -278,8 +279,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Viewport(0, 0, f->width, f->height);
         /* Clouds only: they are drawn over nothing (premultiplied, alpha = coverage) and composited over the host. */
         gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT | (f->clouds_only ? GL_COLOR_BUFFER_BIT : 0));
-        if (!f->clouds_only)
-            cu_pass_sky_draw(&r->pass_sky, ctx, 0);
+        if (!f->clouds_only && cu_pass_sky_draw(&r->pass_sky, ctx, 0, err))
+            return 1;
     }
     cu_profile_mark(r, CU_PASS_SKY);
     cu_camera view_cam = ctx->camera; /* the view's own, at the world origin: what the temporal grid reprojects */
@@ -336,7 +337,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Disable(GL_BLEND);
         gl->Disable(GL_STENCIL_TEST);
         gl->Disable(GL_DEPTH_TEST);
-        cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n);
+        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, err))
+            return 1;
         ctx->camera = nearest;
         ctx->cloud = nearest_cloud;
         cu_profile_mark(r, CU_PASS_UPSAMPLE);

@@ -2,6 +2,7 @@
 #include "pass_sky.h"
 #include "error.h"
 #include <stdio.h>
+#include <math.h>
 #include <string.h>
 
 static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
@@ -17,22 +18,32 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
+/* Makes the program of a kind and part, once. */
+static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, cu_error *err)
+{
+    static const char *const kinds[CU_SKY_KINDS] = {"", "#define SKY_TONEMAP 1\n",
+                                                    "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n"};
+    if (p->prog[kind][part])
+        return 0;
+    char defs[2200];
+    if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n", p->defines, kinds[kind], part) >= (int)sizeof defs)
+        return cu_fail(err, "sky: shader defines too long");
+    if (!(p->prog[kind][part] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
+        return 1;
+    locs_get(gl, p->prog[kind][part], &p->loc[kind][part]);
+    return 0;
+}
+
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     memset(p, 0, sizeof *p);
-    char defs[2048], out_defs[2048], over_defs[2048];
-    if (snprintf(defs, sizeof defs, "%s#define SKY_TABLE %d\n", defines, CU_SKY_TABLE) >= (int)sizeof defs ||
-        snprintf(out_defs, sizeof out_defs, "%s#define SKY_TONEMAP 1\n", defs) >= (int)sizeof out_defs ||
-        snprintf(over_defs, sizeof over_defs, "%s#define SKY_COMPOSITE 1\n", out_defs) >= (int)sizeof over_defs)
+    if (snprintf(p->defines, sizeof p->defines, "%s#define SKY_TABLE %d\n", defines, CU_SKY_TABLE) >=
+        (int)sizeof p->defines)
         return cu_fail(err, "sky: shader defines too long");
-    if (!(p->prog = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)) ||
-        !(p->prog_out = cu_gl_program(gl, "sky.vert", "sky.frag", out_defs, err)) ||
-        !(p->prog_over = cu_gl_program(gl, "sky.vert", "sky.frag", over_defs, err)))
-        return 1;
-    locs_get(gl, p->prog, &p->hdr);
-    locs_get(gl, p->prog_out, &p->out);
-    locs_get(gl, p->prog_over, &p->over);
+    for (int kind = 0; kind < CU_SKY_KINDS; kind++)
+        if (program(p, gl, kind, CU_SKY_BOTH, err))
+            return 1;
     gl->GenTextures(1, &p->tables);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -60,24 +71,20 @@ static void tables_update(cu_pass_sky *p, const cu_gl *gl, const cu_sky *sky)
 
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
 {
-    if (p->prog)
-        gl->DeleteProgram(p->prog);
-    if (p->prog_out)
-        gl->DeleteProgram(p->prog_out);
-    if (p->prog_over)
-        gl->DeleteProgram(p->prog_over);
+    for (int kind = 0; kind < CU_SKY_KINDS; kind++)
+        for (int part = 0; part < CU_SKY_PARTS; part++)
+            if (p->prog[kind][part])
+                gl->DeleteProgram(p->prog[kind][part]);
     if (p->tables)
         gl->DeleteTextures(1, &p->tables);
-    p->prog = p->prog_out = p->prog_over = p->tables = 0;
-    p->tables_built = 0;
+    memset(p, 0, sizeof *p);
 }
 
-static void draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, const cu_sky_locs *p)
+static void uniforms(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, const cu_sky_locs *p, int factor)
 {
     const cu_gl *gl = ctx->gl;
     const cu_sky *sky = ctx->sky;
     const cu_scene *s = ctx->scene;
-    gl->Disable(GL_DEPTH_TEST);
     gl->UseProgram(prog);
     gl->UniformMatrix4fv(p->inv_viewproj, 1, GL_FALSE, ctx->camera.inv_rot);
     cu_sun_uniforms(ctx, &p->sun);
@@ -90,38 +97,92 @@ static void draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, const 
     gl->Uniform3f(p->gmap, (float)ctx->ground_map[0].x, (float)ctx->ground_map[0].y, (float)ctx->ground_map[0].z);
     gl->Uniform3f(p->gmap2, (float)ctx->ground_map[1].x, (float)ctx->ground_map[1].y, (float)ctx->ground_map[1].z);
     gl->Uniform1f(p->shadow_g, (float)cu_shadow_g(ctx));
+    gl->Uniform1f(p->cloud_factor, (float)factor); /* -1 (no composite): ignored */
+    float os[3];
+    cu_out_scale(ctx, os);
+    gl->Uniform3f(p->out_scale, os[0], os[1], os[2]);
+    if (s->sky_model == CU_SKY_CONSTANT)
+        gl->Uniform3f(p->sky_color, (float)s->sky_color[0], (float)s->sky_color[1], (float)s->sky_color[2]);
+    else
+        tables_update(pass, gl, sky);
+}
+
+/* The height of the view direction at the viewport's NDC (x, y), over its length, through the sky's matrix as
+ * sky.vert and sky.frag make it (column-major, clip -> direction). Affine in the screen up to a positive factor
+ * (sign(d.y) is that of the far point's y), so over a rectangle its sign is settled at the corners. */
+static double height_at(const float *m, double x, double y)
+{
+    double n[4], f[4];
+    for (int r = 0; r < 4; r++) {
+        n[r] = m[r] * x + m[4 + r] * y - m[8 + r] + m[12 + r];
+        f[r] = m[r] * x + m[4 + r] * y + m[8 + r] + m[12 + r];
+    }
+    double d[3] = {f[0] / f[3] - n[0] / n[3], f[1] / f[3] - n[1] / n[3], f[2] / f[3] - n[2] / n[3]};
+    return d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+/* What the rows between NDC y0 and y1 hold: sky alone, ground alone, or both. A margin far above fp32's rounding of
+ * the direction in the shader keeps the rows near the horizon with the branch; NaN (a degenerate camera) too. */
+static int rows_part(const float *m, double y0, double y1)
+{
+    const double margin = 1e-4;
+    double h[4] = {height_at(m, -1, y0), height_at(m, 1, y0), height_at(m, -1, y1), height_at(m, 1, y1)};
+    int above = 1, below = 1;
+    for (int k = 0; k < 4; k++) {
+        above = above && h[k] > margin;
+        below = below && h[k] < -margin;
+    }
+    return above ? CU_SKY_ABOVE : below ? CU_SKY_BELOW : CU_SKY_BOTH;
+}
+
+/* The full-screen triangle, a run of rows at a time with the program of what they hold: sky rows without the
+ * ground's shadow maps, ground rows without the Perez tables. A constant sky has no branch: one draw. */
+static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, cu_error *err)
+{
+    const cu_gl *gl = ctx->gl;
+    gl->Disable(GL_DEPTH_TEST);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
     gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau[0]);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_GROUND2);
     gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau[1]);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SKY);
+    gl->BindTexture(GL_TEXTURE_2D, pass->tables);
     gl->ActiveTexture(GL_TEXTURE0);
-    float os[3];
-    cu_out_scale(ctx, os);
-    gl->Uniform3f(p->out_scale, os[0], os[1], os[2]);
-    if (s->sky_model == CU_SKY_CONSTANT) {
-        gl->Uniform3f(p->sky_color, (float)s->sky_color[0], (float)s->sky_color[1], (float)s->sky_color[2]);
-    } else {
-        tables_update(pass, gl, sky);
-        gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SKY);
-        gl->BindTexture(GL_TEXTURE_2D, pass->tables);
-        gl->ActiveTexture(GL_TEXTURE0);
-    }
     gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    int h = ctx->height > 0 ? ctx->height : 1, split = ctx->scene->sky_model != CU_SKY_CONSTANT;
+    int row = 0, part = split ? rows_part(ctx->camera.inv_rot, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH;
+    if (split)
+        gl->Enable(GL_SCISSOR_TEST);
+    while (row < h) {
+        int end = row + 1, next = part;
+        while (split && end < h && (next = rows_part(ctx->camera.inv_rot, -1.0 + 2.0 * end / h,
+                                                     -1.0 + 2.0 * (end + 1) / h)) == part)
+            end++;
+        if (!split)
+            end = h;
+        if (program(pass, gl, kind, part, err))
+            break;
+        uniforms(pass, ctx, pass->prog[kind][part], &pass->loc[kind][part], factor);
+        if (split)
+            gl->Scissor(0, row, ctx->width, end - row);
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        row = end;
+        part = next;
+    }
+    gl->Disable(GL_SCISSOR_TEST);
+    return row < h;
 }
 
-void cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output)
+int cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output, cu_error *err)
 {
-    draw(pass, ctx, to_output ? pass->prog_out : pass->prog, to_output ? &pass->out : &pass->hdr);
+    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, err);
 }
 
-void cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor)
+int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
-    gl->UseProgram(pass->prog_over);
-    gl->Uniform1f(pass->over.cloud_factor, (float)factor);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_CLOUDS);
     gl->BindTexture(GL_TEXTURE_2D, clouds);
     gl->ActiveTexture(GL_TEXTURE0);
-    draw(pass, ctx, pass->prog_over, &pass->over);
+    return draw(pass, ctx, CU_SKY_OVER, factor, err);
 }

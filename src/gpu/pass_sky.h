@@ -11,12 +11,17 @@ typedef struct cu_sky_locs {
     GLint ground_sun, eye, gmap, gmap2, shadow_g, cloud_factor;
 } cu_sky_locs;
 
-/* prog draws radiance into the HDR target under the clouds; prog_out, for a frame with no cloud in view, the
+/* The programs by kind: radiance into the HDR target under the clouds; for a frame with no cloud in view, the
  * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two);
- * prog_over the same with a cloud image composited on the way. */
+ * the same with a cloud image composited on the way. */
+enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
+/* And by the rows they draw (sky.frag's SKY_PART): rows holding the horizon, rows of sky alone, rows of ground alone.
+ * A software rasteriser runs both sides of a shader's branch on every pixel; a program without the branch does not. */
+enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
 typedef struct cu_pass_sky {
-    GLuint prog, prog_out, prog_over;
-    cu_sky_locs hdr, out, over;
+    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS]; /* [kind][CU_SKY_BOTH] made at once, the others when first drawn */
+    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS];
+    char defines[2048];         /* the scene's, for the programs made later */
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
     int tables_built;
@@ -24,9 +29,10 @@ typedef struct cu_pass_sky {
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
-/* Draws into the bound target, for the directions of ctx->camera: radiance, or (to_output) tone-mapped colour. */
-void cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output);
-/* prog_over: the sky with a cloud image (1/factor of the frame's size, premultiplied) over it, tone-mapped, into the
- * bound target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. */
-void cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor);
+/* Draws into the bound target, whose viewport is ctx->width x ctx->height, for the directions of ctx->camera:
+ * radiance, or (to_output) tone-mapped colour. Fails only where a program could not be made. */
+int cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output, cu_error *err);
+/* The sky with a cloud image (1/factor of the frame's size, premultiplied) over it, tone-mapped, into the bound
+ * target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. */
+int cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor, cu_error *err);
 #endif

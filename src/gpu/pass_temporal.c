@@ -21,24 +21,30 @@ int cu_pass_temporal_create(cu_pass_temporal *p, const cu_gpu_scene *ctx, cu_err
 {
     const cu_gl *gl = ctx->gl;
     memset(p, 0, sizeof *p);
-    if (!(p->prog = cu_gl_program(gl, "sky.vert", "temporal.frag", "", err)))
-        return 1;
-#define LOC(f, n) p->loc.f = cu_gpu_loc(gl, p->prog, n)
-    LOC(grid, "u_grid"); LOC(offset, "u_offset"); LOC(size, "u_size"); LOC(inv_rot, "u_inv_viewproj");
-    LOC(prev_rot, "u_prev_rot"); LOC(eye_delta, "u_eye_delta"); LOC(moved, "u_moved");
-    LOC(hw_filter, "u_hw_filter");
+    /* two variants, not a uniform: a software rasteriser pays for both sides of a branch (temporal.frag) */
+    static const char *const defines[2] = {"#define HW_FILTER 0\n", "#define HW_FILTER 1\n"};
+    for (int v = 0; v < 2; v++) {
+        GLuint prog = p->prog[v] = cu_gl_program(gl, "sky.vert", "temporal.frag", defines[v], err);
+        if (!prog)
+            return 1;
+        cu_temporal_locs *l = &p->loc[v];
+#define LOC(f, n) l->f = cu_gpu_loc(gl, prog, n)
+        LOC(grid, "u_grid"); LOC(offset, "u_offset"); LOC(size, "u_size"); LOC(inv_rot, "u_inv_viewproj");
+        LOC(prev_rot, "u_prev_rot"); LOC(eye_delta, "u_eye_delta"); LOC(moved, "u_moved");
 #undef LOC
-    cu_gpu_unit(gl, p->prog, "u_fresh", 0);
-    cu_gpu_unit(gl, p->prog, "u_fresh_depth", 1);
-    cu_gpu_unit(gl, p->prog, "u_hist", 2);
-    cu_gpu_unit(gl, p->prog, "u_hist_depth", 3);
+        cu_gpu_unit(gl, prog, "u_fresh", 0);
+        cu_gpu_unit(gl, prog, "u_fresh_depth", 1);
+        cu_gpu_unit(gl, prog, "u_hist", 2);
+        cu_gpu_unit(gl, prog, "u_hist_depth", 3);
+    }
     return 0;
 }
 
 void cu_pass_temporal_destroy(cu_pass_temporal *p, const cu_gl *gl)
 {
-    if (p->prog)
-        gl->DeleteProgram(p->prog);
+    for (int v = 0; v < 2; v++)
+        if (p->prog[v])
+            gl->DeleteProgram(p->prog[v]);
     cu_target_delete(&p->sparse, gl);
     cu_target_delete(&p->hist[0], gl);
     cu_target_delete(&p->hist[1], gl);
@@ -130,12 +136,12 @@ void cu_pass_temporal_end(cu_pass_temporal *p, const cu_gpu_scene *ctx, const cu
         gl->Disable(GL_BLEND);
         gl->Disable(GL_DEPTH_TEST);
         gl->Disable(GL_STENCIL_TEST);
-        gl->UseProgram(p->prog);
-        const cu_temporal_locs *l = &p->loc;
-        gl->Uniform1i(l->grid, p->grid);
         /* RGBA16F targets are filtered by the texture unit (set LINEAR in fit); RGBA32F ones (linear output) are not
          * filterable in GLES 3.0, so the shader does it */
-        gl->Uniform1i(l->hw_filter, dst->format == GL_RGBA16F);
+        int hw = dst->format == GL_RGBA16F;
+        gl->UseProgram(p->prog[hw]);
+        const cu_temporal_locs *l = &p->loc[hw];
+        gl->Uniform1i(l->grid, p->grid);
         gl->Uniform2i(l->offset, p->ox, p->oy);
         gl->Uniform2f(l->size, (float)dst->width, (float)dst->height);
         gl->UniformMatrix4fv(l->inv_rot, 1, GL_FALSE, cam->inv_rot);

@@ -10,12 +10,12 @@
 #include "target.h"
 
 typedef struct cu_temporal_locs {
-    GLint grid, offset, size, inv_rot, prev_rot, eye_delta, moved, hw_filter;
+    GLint grid, offset, size, inv_rot, prev_rot, eye_delta, moved;
 } cu_temporal_locs;
 
 typedef struct cu_pass_temporal {
-    GLuint prog;
-    cu_temporal_locs loc;
+    GLuint prog[2];            /* the resolve reading the history texel by texel, and through the texture unit */
+    cu_temporal_locs loc[2];
     cu_target sparse;          /* this frame's marched pixels: colour, alpha x (distance, motion); depth-stencil */
     cu_target hist[2];         /* the cloud image, this frame's and the last one's, the same layout */
     int cur;                   /* hist[cur]: the newest image */

@@ -2,7 +2,9 @@
  * every pixel of the analytic sky, through both headless back ends, over sun elevations from the horizon to high noon,
  * a clear and a hazy sky, and views toward the sun, the zenith and the horizon. The pass reads the Perez function as
  * the product of two tables (cu_sky_tables); this is what says the tables, their spacing, their storage and the
- * shader's lookup reproduce the model. */
+ * shader's lookup reproduce the model. And the rows: the pass draws rows of sky alone, of ground alone and rows
+ * holding the horizon with programs of their own (pass_sky.c); host cameras rolled and pitched every way put each
+ * pixel above the horizon on the sky and each below on the ground, in radiance and tone-mapped. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,12 +16,24 @@
 #include "render_util.h"
 #include "scene.h"
 #include "sky.h"
+#include "tonemap.h"
 
 static const cu_display_backend *const backends[] = {&cu_display_egl, &cu_display_osmesa};
 static const char *const backend_names[] = {"egl", "osmesa"};
 
 #define W 96
 #define H 72
+
+/* scenes/cumulus.scene with `sets` applied (NULL-terminated), as the renderer was given it. */
+static cu_scene *scene_with(const char *const *sets)
+{
+    cu_scene *s;
+    cu_error e;
+    assert_int_equal(cu_scene_load(&s, "scenes/cumulus.scene", &e), 0);
+    for (int i = 0; sets[i]; i++)
+        assert_int_equal(cu_scene_set(s, sets[i], &e), 0);
+    return s;
+}
 
 /* One sky: renders it (linear output: radiance itself) and compares each pixel above the horizon and away from the
  * sun's disk with the CPU. Returns the largest relative error of any channel brighter than 2 % of the pixel's
@@ -33,11 +47,7 @@ static double sky_error(tr_ctx *c, const char *const *sets, double *median)
     assert_non_null(px);
     assert_non_null(errs);
     tr_read_rgbf(c, px);
-    cu_scene *s;
-    cu_error e;
-    assert_int_equal(cu_scene_load(&s, "scenes/cumulus.scene", &e), 0);
-    for (int i = 0; sets[i]; i++)
-        assert_int_equal(cu_scene_set(s, sets[i], &e), 0);
+    cu_scene *s = scene_with(sets);
     cu_sky sky;
     cu_sky_compute(&sky, s);
     double worst = 0;
@@ -112,8 +122,119 @@ static void test_sky_is_preetham(void **st)
     }
 }
 
+/* A host camera at the scene's position looking along dir, rolled by roll degrees about it. */
+static void rolled_camera(const cu_scene *s, vec3 dir, double roll, float view[16], float proj[16], mat4 *inv)
+{
+    vec3 f = v3_norm(dir), side = v3_cross(f, v3(0, 1, 0));
+    if (v3_len(side) < 1e-6) /* straight up or down */
+        side = v3(1, 0, 0);
+    side = v3_norm(side);
+    double a = roll * CU_PI / 180;
+    vec3 up = v3_add(v3_scale(v3_cross(side, f), cos(a)), v3_scale(side, sin(a)));
+    mat4 rot = m4_look_dir(v3(0, 0, 0), f, up), eye = m4_look_dir(v3_from(s->cam_pos), f, up);
+    mat4 p = m4_perspective(70.0 * CU_PI / 180.0, (double)W / H, 1.0, 1e5);
+    m4_to_float(eye, view);
+    m4_to_float(p, proj);
+    *inv = m4_inverse(m4_mul(p, rot));
+}
+
+/* The direction through the centre of pixel (x, y), top row first, through inv (clip -> direction). */
+static vec3 pixel_dir(mat4 inv, int x, int y)
+{
+    double c[4] = {(x + 0.5) / W * 2 - 1, 1 - (y + 0.5) / H * 2, 1, 1}, o[4] = {0, 0, 0, 0};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 4; k++)
+            o[i] += inv.m[k * 4 + i] * c[k];
+    return v3_norm(v3(o[0] / o[3], o[1] / o[3], o[2] / o[3]));
+}
+
+static void test_sky_and_ground_in_rows(void **st)
+{
+    (void)st;
+    /* level, rolled 30, 90 (the horizon up the screen) and 180 degrees (the ground on top), pitched down and up so
+     * the horizon crosses a corner, straight down (ground alone) and straight up (sky alone) */
+    static const double views[][4] = {{0, -0.1, -1, 0}, {0, -0.1, -1, 30}, {0, 0.2, -1, 90}, {0, 0.1, -1, 180},
+                                      {1, -0.6, -1, 20}, {-1, 0.5, 1, -35}, {0, -1, 0, 0}, {0, 1, 0, 0}};
+    for (int linear = 0; linear < 2; linear++) {
+        tr_ctx c;
+        if (tr_open(&c, &cu_display_egl, W, H, linear))
+            fail_msg("%s", c.err);
+        const char *sets[] = {"cloud.density=0", "sky.model=preetham", "sun.elevation=35", NULL};
+        if (tr_render(&c, "scenes/cumulus.scene", sets))
+            fail_msg("%s", c.err);
+        cu_scene *s = scene_with(sets);
+        cu_error e;
+        cu_sky sky;
+        cu_sky_compute(&sky, s);
+        double white[3];
+        cu_sky_white_balance(s, white);
+        float *px = malloc(sizeof(float) * 3 * W * H);
+        uint8_t *rgba = malloc(4 * W * H);
+        assert_non_null(px);
+        assert_non_null(rgba);
+        for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+            float view[16], proj[16];
+            mat4 inv;
+            rolled_camera(s, v3(views[v][0], views[v][1], views[v][2]), views[v][3], view, proj, &inv);
+            unsigned fbo;
+            int w, h;
+            c.be->frame(c.disp, &fbo, &w, &h);
+            cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = linear, .view = view, .projection = proj};
+            if (cu_render(c.r, &f, &e))
+                fail_msg("%s", e.msg);
+            if (linear)
+                tr_read_rgbf(&c, px);
+            else
+                tr_read_rgba8(&c, rgba);
+            int above = 0, below = 0, worst8 = 0;
+            double worst = 0;
+            for (int y = 0; y < H; y++)
+                for (int x = 0; x < W; x++) {
+                    vec3 d = pixel_dir(inv, x, y);
+                    if (fabs(d.y) < 1e-3 || v3_dot(d, sky.sun_dir) > cos(1.0 * CU_PI / 180.0))
+                        continue;
+                    double want[3];
+                    if (d.y > 0)
+                        cu_sky_radiance(&sky, s, d, want);
+                    else
+                        for (int k = 0; k < 3; k++)
+                            want[k] = sky.ground[k];
+                    above += d.y > 0;
+                    below += d.y < 0;
+                    if (linear) {
+                        for (int k = 0; k < 3; k++) {
+                            float got = px[3 * (y * W + x) + k];
+                            assert_false(isnan(got) || isinf(got));
+                            double r = fabs(got - want[k]) / want[k];
+                            worst = r > worst ? r : worst;
+                        }
+                    } else {
+                        float wf[3] = {(float)want[0], (float)want[1], (float)want[2]};
+                        unsigned char w8[3];
+                        cu_tonemap_rgb8(wf, s->exposure, white, w8);
+                        for (int k = 0; k < 3; k++) {
+                            int dd = abs((int)rgba[4 * (y * W + x) + k] - w8[k]);
+                            worst8 = dd > worst8 ? dd : worst8;
+                        }
+                    }
+                }
+            printf("view %zu (%s): %d pixels of sky, %d of ground: max relative error %.5f, max %d levels\n", v,
+                   linear ? "radiance" : "tone-mapped", above, below, worst, worst8);
+            assert_true(above + below > W * H / 2);
+            /* the sky's own accuracy is the test above's (0.002); the ground is one colour */
+            assert_true(worst < 0.002);
+            assert_true(worst8 <= 1);
+        }
+        free(px);
+        free(rgba);
+        cu_scene_free(s);
+        tr_close(&c);
+    }
+}
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_sky_is_preetham)};
+    const struct CMUnitTest tests[] = {cmocka_unit_test(test_sky_is_preetham),
+                                       cmocka_unit_test(test_sky_and_ground_in_rows)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
