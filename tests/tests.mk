@@ -48,6 +48,8 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 $(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
+# Where on screen a cloud can be (camera.c), against points of its bounds from random views: no GL.
+$(eval $(call test_program,test_camera_rect,tests/gpu/test_camera_rect.c $(LIB),,$(LIB_LIBS)))
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
 $(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # Issue 7's extremes matrix (it reads the temporal history and impostor images back with GLES itself).

@@ -53,6 +53,25 @@ static double det3(mat4 m)
            m.m[8] * (m.m[1] * m.m[6] - m.m[5] * m.m[2]);
 }
 
+/* A sphere's extent on screen along one axis (a: its centre's eye coordinate on that axis, d: its depth in front
+ * of the eye, r: its radius; NDC = k a / depth - kz): the two tangents from the eye in the plane of that axis and
+ * the view direction, the centre's direction turned by +- asin(r / |centre|). 1 when the eye is inside or a tangent
+ * does not point ahead (the image reaches the screen's edge). */
+static int sphere_extent(double a, double d, double r, double k, double kz, double *lo, double *hi)
+{
+    double l2 = a * a + d * d, t2 = l2 - r * r;
+    if (!(t2 > 0))
+        return 1;
+    double l = sqrt(l2), c = sqrt(t2) / l, s = r / l;
+    double a1 = c * a - s * d, d1 = s * a + c * d, a2 = c * a + s * d, d2 = c * d - s * a;
+    if (!(d1 > 1e-9 * l && d2 > 1e-9 * l))
+        return 1;
+    double n1 = k * a1 / d1 - kz, n2 = k * a2 / d2 - kz;
+    *lo = fmin(n1, n2);
+    *hi = fmax(n1, n2);
+    return 0;
+}
+
 int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull_r, cu_error *err)
 {
     for (int i = 0; i < 16; i++)
@@ -105,6 +124,37 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
             outside = 1;
     }
     c->visible = f > n && !outside;
+    /* Where on screen. A perspective projection without skew: along x and along y, the tangents from the eye to the
+     * bounds' sphere (Mara and McGuire 2013); either one behind the eye, or the eye inside: that whole axis. Else
+     * (orthographic, skewed) the extent of a box about the sphere, whose eight corners bound its image once all lie
+     * in front of the eye. */
+    double rect[4] = {1, 1, -1, -1}, rb = 1.05 * r_eye;
+    if (persp && pm[1] == 0 && pm[4] == 0 && pm[12] == 0 && pm[13] == 0) {
+        double ca[2] = {ce.x, ce.y}, d = -ce.z, p_aa[2] = {pm[0], pm[5]}, p_az[2] = {pm[8], pm[9]};
+        for (int a = 0; a < 2; a++)
+            if (sphere_extent(ca[a], d, rb, p_aa[a] / -pm[11], p_az[a] / -pm[11], &rect[a], &rect[2 + a])) {
+                rect[a] = -1;
+                rect[2 + a] = 1;
+            }
+    } else {
+        for (int q = 0; q < 8; q++) {
+            vec3 p = v3_add(ce, v3(q & 1 ? rb : -rb, q & 2 ? rb : -rb, q & 4 ? rb : -rb));
+            double clip[4];
+            for (int row = 0; row < 4; row++)
+                clip[row] = pm[row] * p.x + pm[4 + row] * p.y + pm[8 + row] * p.z + pm[12 + row];
+            if (!(clip[3] > 1e-9 * (fabs(clip[0]) + fabs(clip[1]) + 1e-30))) {
+                rect[0] = rect[1] = -1;
+                rect[2] = rect[3] = 1;
+                break;
+            }
+            for (int a = 0; a < 2; a++) {
+                rect[a] = fmin(rect[a], clip[a] / clip[3]);
+                rect[2 + a] = fmax(rect[2 + a], clip[a] / clip[3]);
+            }
+        }
+    }
+    for (int a = 0; a < 4; a++)
+        c->ndc_rect[a] = fmin(fmax(rect[a], -1.0), 1.0);
     /* How far from the eye the near plane reaches: znear times the distance of its corners, for the hull test. */
     double k = ortho ? 1.0 : -pm[11]; /* w = k u */
     double tx = (fabs(pm[8]) + k) / fabs(pm[0]), ty = (fabs(pm[9]) + k) / fabs(pm[5]);
@@ -133,4 +183,26 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
     m4_to_float(rot_vp, c->rot_vp);
     m4_to_float(m4_inverse(rot_vp), c->inv_rot);
     return 0;
+}
+
+void cu_camera_clip_rect(cu_camera *c, mat4 view, mat4 proj, vec3 origin, vec3 lo, vec3 hi)
+{
+    mat4 m = m4_mul(proj, m4_mul(view, translate(origin)));
+    double rect[4] = {1, 1, -1, -1};
+    for (int q = 0; q < 8; q++) {
+        vec3 p = v3(q & 1 ? hi.x : lo.x, q & 2 ? hi.y : lo.y, q & 4 ? hi.z : lo.z);
+        double clip[4];
+        for (int row = 0; row < 4; row++)
+            clip[row] = m.m[row] * p.x + m.m[4 + row] * p.y + m.m[8 + row] * p.z + m.m[12 + row];
+        if (!(clip[3] > 1e-9 * (fabs(clip[0]) + fabs(clip[1]) + 1e-30)))
+            return; /* a corner behind the eye: the box's image is unbounded */
+        for (int a = 0; a < 2; a++) {
+            rect[a] = fmin(rect[a], clip[a] / clip[3]);
+            rect[2 + a] = fmax(rect[2 + a], clip[a] / clip[3]);
+        }
+    }
+    for (int a = 0; a < 2; a++) {
+        c->ndc_rect[a] = fmax(c->ndc_rect[a], rect[a]);
+        c->ndc_rect[2 + a] = fmin(c->ndc_rect[2 + a], rect[2 + a]);
+    }
 }

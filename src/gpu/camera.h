@@ -8,6 +8,9 @@
  * hull_r: radius about it that holds every hull. Fails, naming the problem, for a matrix that is not finite, a
  * singular view or a projection that is neither perspective nor orthographic. */
 int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull_r, cu_error *err);
+/* Narrows c->ndc_rect to the image of a box (lo .. hi about origin, in the cloud's local frame) that holds the
+ * cloud, where all its corners lie in front of the eye. */
+void cu_camera_clip_rect(cu_camera *c, mat4 view, mat4 proj, vec3 origin, vec3 lo, vec3 hi);
 /* A float matrix as given by the host, or NULL. */
 mat4 cu_camera_mat4(const float *m);
 #endif

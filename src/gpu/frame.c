@@ -95,6 +95,7 @@ static int visible_clouds(cu_renderer *r, mat4 view, mat4 proj, cu_error *err)
             return -1;
         if (!c->visible)
             continue;
+        cu_camera_clip_rect(c, view, proj, sl->cloud.origin, sl->cloud.bounds_min, sl->cloud.bounds_max);
         sl->pixels = screen_pixels(c, proj, sl->cloud.bound_radius, r->ctx.height);
         sl->want_size = map_size_for(r, sl->pixels);
         /* perspective: the power distance above (pos is the eye, cloud-local); orthographic: how far along the view
@@ -200,6 +201,24 @@ static int temporal_begin(cu_renderer *r, const cu_frame *f, int visible, int n,
     return 0;
 }
 
+/* Where this frame's clouds can be on screen (NDC x0, y0, x1, y1): the union of their cameras' rectangles, an
+ * impostor's doubled about its centre (its square faces the eye it was made from, not quite this one). The passes
+ * after the clouds' leave the rest to the sky. */
+static void clouds_ndc_rect(const cu_renderer *r, int visible, double u[4])
+{
+    u[0] = u[1] = 1;
+    u[2] = u[3] = -1;
+    for (int j = 0; j < visible; j++) {
+        const double *q = r->cams[r->order[j]].ndc_rect;
+        double k = r->clouds.slot[r->order[j]].imp.in_use ? 1.0 : 0.5;
+        for (int a = 0; a < 2; a++) {
+            double mid = 0.5 * (q[a] + q[2 + a]), half = k * (q[2 + a] - q[a]);
+            u[a] = fmin(u[a], mid - half);
+            u[2 + a] = fmax(u[2 + a], mid + half);
+        }
+    }
+}
+
 static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
 {
     cu_gl *gl = &r->gl;
@@ -238,6 +257,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (cu_frame_impostors(r, f, visible, err))
         return 1;
     cu_profile_mark(r, CU_PASS_MAPS); /* impostor images count with the maps: made now, drawn from later */
+    double cloud_rect[4]; /* before the temporal grid shifts the clouds' cameras */
+    clouds_ndc_rect(r, visible, cloud_rect);
     /* The sky's camera: the view's directions alone (the world origin as the cloud frame). The sun as it is now: with
      * no cloud in view nothing above has set it since cu_renderer_set_sun moved it. */
     ctx->cloud = &r->none;
@@ -320,7 +341,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     temporal_frame_identity(ctx);
     GLuint image = 0;
     if (g > 1) {
-        cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time);
+        cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time, cloud_rect);
         image = cu_pass_temporal_image(&r->pass_temporal);
     } else if (n > 1) {
         image = r->pass_upsample.low.tex[0];
@@ -337,7 +358,10 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Disable(GL_BLEND);
         gl->Disable(GL_STENCIL_TEST);
         gl->Disable(GL_DEPTH_TEST);
-        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, err))
+        /* the rows the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads */
+        int grow = (g + 3) * n, rows[2] = {(int)floor(0.5 * (cloud_rect[1] + 1.0) * f->height) - grow,
+                                           (int)ceil(0.5 * (cloud_rect[3] + 1.0) * f->height) + grow};
+        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, rows, err))
             return 1;
         ctx->camera = nearest;
         ctx->cloud = nearest_cloud;

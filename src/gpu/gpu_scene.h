@@ -48,6 +48,8 @@ typedef struct cu_camera {
     double znear;            /* of vp (cumulo's own depth planes around the clouds) */
     double near_reach;       /* perspective: the near plane's farthest point from the eye, in units of znear */
     int visible;             /* 0: the clouds' bounds lie wholly outside the view (its frustum and depths) */
+    double ndc_rect[4];      /* where on screen the bounds can be: NDC x0, y0, x1, y1 within [-1, 1]; the whole
+                              * screen where they reach behind the eye */
     int near_cuts;           /* 1: the host's near plane (orthographic) cuts the clouds' bounds */
     float vp[16], inv_vp[16];/* the host's x, y, w rows with cumulo's depth row */
     float inv_rot[16];       /* clip space to directions, the camera at the origin: the sky's */

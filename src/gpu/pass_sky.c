@@ -136,8 +136,10 @@ static int rows_part(const float *m, double y0, double y1)
 }
 
 /* The full-screen triangle, a run of rows at a time with the program of what they hold: sky rows without the
- * ground's shadow maps, ground rows without the Perez tables. A constant sky has no branch: one draw. */
-static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, cu_error *err)
+ * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch), and with kind
+ * CU_SKY_OVER rows outside rows[0] .. rows[1] - 1 without the cloud image (CU_SKY_OUT: the same colours where the
+ * image is empty). */
+static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, const int rows[2], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_DEPTH_TEST);
@@ -150,39 +152,41 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindVertexArray(ctx->empty_vao);
     int h = ctx->height > 0 ? ctx->height : 1, split = ctx->scene->sky_model != CU_SKY_CONSTANT;
-    int row = 0, part = split ? rows_part(ctx->camera.inv_rot, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH;
-    if (split)
-        gl->Enable(GL_SCISSOR_TEST);
-    while (row < h) {
-        int end = row + 1, next = part;
-        while (split && end < h && (next = rows_part(ctx->camera.inv_rot, -1.0 + 2.0 * end / h,
-                                                     -1.0 + 2.0 * (end + 1) / h)) == part)
+    const float *m = ctx->camera.inv_rot;
+    gl->Enable(GL_SCISSOR_TEST);
+    for (int row = 0; row < h;) {
+        /* a run: rows holding the same part, all on the same side of the cloud image's rows */
+        int part = split ? rows_part(m, -1.0 + 2.0 * row / h, -1.0 + 2.0 * (row + 1) / h) : CU_SKY_BOTH;
+        int in = row >= rows[0] && row < rows[1], end = row + 1;
+        while (end < h && (end >= rows[0] && end < rows[1]) == in &&
+               (!split || rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) == part))
             end++;
-        if (!split)
-            end = h;
-        if (program(pass, gl, kind, part, err))
-            break;
-        uniforms(pass, ctx, pass->prog[kind][part], &pass->loc[kind][part], factor);
-        if (split)
-            gl->Scissor(0, row, ctx->width, end - row);
+        int k = kind == CU_SKY_OVER && !in ? CU_SKY_OUT : kind;
+        if (program(pass, gl, k, part, err)) {
+            gl->Disable(GL_SCISSOR_TEST);
+            return 1;
+        }
+        uniforms(pass, ctx, pass->prog[k][part], &pass->loc[k][part], factor);
+        gl->Scissor(0, row, ctx->width, end - row);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
         row = end;
-        part = next;
     }
     gl->Disable(GL_SCISSOR_TEST);
-    return row < h;
+    return 0;
 }
 
 int cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output, cu_error *err)
 {
-    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, err);
+    static const int all_rows[2] = {0, 1 << 30};
+    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, all_rows, err);
 }
 
-int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, cu_error *err)
+int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rows[2],
+                          cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_CLOUDS);
     gl->BindTexture(GL_TEXTURE_2D, clouds);
     gl->ActiveTexture(GL_TEXTURE0);
-    return draw(pass, ctx, CU_SKY_OVER, factor, err);
+    return draw(pass, ctx, CU_SKY_OVER, factor, rows, err);
 }

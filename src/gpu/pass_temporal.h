@@ -42,8 +42,11 @@ int  cu_pass_temporal_begin(cu_pass_temporal *p, const cu_gpu_scene *ctx, int lw
 /* The projection that puts the sparse target's pixel (i, j) on the cloud image's pixel (g i + ox, g j + oy). */
 mat4 cu_pass_temporal_projection(const cu_pass_temporal *p, mat4 proj, int lw, int lh);
 /* Ends the frame: resolves the sparse pixels with the history (when sparse) into the next image, makes it the
- * newest and remembers this frame's camera (cam: the view's, at the world origin, unshifted), sun and time. */
-void cu_pass_temporal_end(cu_pass_temporal *p, const cu_gpu_scene *ctx, const cu_camera *cam, double time);
+ * newest and remembers this frame's camera (cam: the view's, at the world origin, unshifted), sun and time. Only
+ * about ndc_rect (x0, y0, x1, y1: where the clouds can be) is resolved; the rest of the image is cleared: no fresh
+ * sample there sees a cloud, and a history there is a cloud that has left. */
+void cu_pass_temporal_end(cu_pass_temporal *p, const cu_gpu_scene *ctx, const cu_camera *cam, double time,
+                          const double ndc_rect[4]);
 /* The newest cloud image (premultiplied radiance, alpha) for the upsampling. */
 GLuint cu_pass_temporal_image(const cu_pass_temporal *p);
 #endif
