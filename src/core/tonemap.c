@@ -10,7 +10,10 @@ double cu_tonemap_aces(double x)
 
 double cu_tonemap_srgb(double c)
 {
-    return c < CU_SRGB_KNEE ? CU_SRGB_LINEAR * c : CU_SRGB_SCALE * pow(c, 1.0 / CU_SRGB_GAMMA) - CU_SRGB_OFFSET;
+    if (c < CU_SRGB_KNEE)
+        return CU_SRGB_LINEAR * c;
+    double s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);
+    return CU_SRGB_R1 * s1 + CU_SRGB_R2 * s2 - CU_SRGB_R3 * s3 - CU_SRGB_R4 * c;
 }
 
 double cu_tonemap_channel(double radiance, double exposure, double white)

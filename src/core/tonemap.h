@@ -12,16 +12,22 @@
 #define CU_TONEMAP_C 2.43
 #define CU_TONEMAP_D 0.59
 #define CU_TONEMAP_E 0.14
-/* sRGB: 12.92 c below the knee, 1.055 c^(1/2.4) - 0.055 from it on. */
+/* sRGB: 12.92 c below the knee, 1.055 c^(1/2.4) - 0.055 from it on, which the display transform takes as
+ * R1 c^(1/2) + R2 c^(1/4) - R3 c^(1/8) - R4 c (Taylor 2012): within 0.25/255 of it, three square roots instead of a
+ * power per channel on the GPU. */
 #define CU_SRGB_KNEE 0.0031308
 #define CU_SRGB_LINEAR 12.92
 #define CU_SRGB_SCALE 1.055
 #define CU_SRGB_OFFSET 0.055
 #define CU_SRGB_GAMMA 2.4
+#define CU_SRGB_R1 0.662002687
+#define CU_SRGB_R2 0.68412206
+#define CU_SRGB_R3 0.323583601
+#define CU_SRGB_R4 0.022541147
 
 /* The filmic curve of a non-negative exposed value x, in [0, 1]. */
 double cu_tonemap_aces(double x);
-/* The sRGB encoding of a linear value c in [0, 1]. */
+/* The sRGB encoding of a linear value c in [0, 1], as the display transform makes it (the roots' form). */
 double cu_tonemap_srgb(double c);
 /* The shader's output for one channel, in [0, 1]: srgb(aces(max(radiance * exposure / white, 0))). A NaN radiance
  * gives 0, as max() does on the GPUs we run on. */
