@@ -23,14 +23,22 @@ float tau_in(sampler2D map, vec3 gmap, vec2 g)
     vec2 uv = (g - gmap.xy) / gmap.z + 0.5;
     return any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))) ? 0.0 : texture(map, uv).r;
 }
+// GROUND_MAPS (pass_sky.c): how many of the maps hold shadows this frame; the others are not read.
 vec3 ground(vec3 dir)
 {
+#if GROUND_MAPS == 0
+    return u_ground;
+#else
     float t = -u_eye.y / min(dir.y, -1e-6);
     vec2 g = u_eye.xz + dir.xz * t;
     if (u_eye.y <= 0.0)
         return u_ground;
-    float tau = tau_in(u_ground_tau, u_gmap, g) + tau_in(u_ground_tau2, u_gmap2, g);
+    float tau = tau_in(u_ground_tau, u_gmap, g);
+#if GROUND_MAPS > 1
+    tau += tau_in(u_ground_tau2, u_gmap2, g);
+#endif
     return u_ground - u_ground_sun * (1.0 - 1.0 / (1.0 + 0.75 * (1.0 - u_shadow_g) * tau));
+#endif
 }
 #else
 vec3 ground(vec3 dir)

@@ -251,6 +251,7 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
         ctx->ground_tau[g] = r->pass_shadow.zero_tex;
         ctx->ground_map[g] = v3(0, 0, 1);
     }
+    ctx->ground_maps = 0;
     vec3 sd = ctx->sky->sun_dir, eye = ctx->camera.pos;
     if (!r->shadows || r->scene.sky_model == CU_SKY_CONSTANT || sd.y < 0.02 || ctx->camera.ortho || eye.y <= 0)
         return 0;
@@ -265,5 +266,6 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     for (int g = 0; g < r->ground_maps; g++)
         if (update_map(r, g, sd, eye, jumped, unseen, err))
             return 1;
+    ctx->ground_maps = r->ground_maps;
     return 0;
 }

@@ -18,19 +18,20 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
-/* Makes the program of a kind and part, once. */
-static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, cu_error *err)
+/* Makes the program of a kind, part and count of ground maps, once. */
+static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, cu_error *err)
 {
     static const char *const kinds[CU_SKY_KINDS] = {"", "#define SKY_TONEMAP 1\n",
                                                     "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n"};
-    if (p->prog[kind][part])
+    if (p->prog[kind][part][maps])
         return 0;
     char defs[2200];
-    if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n", p->defines, kinds[kind], part) >= (int)sizeof defs)
+    if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n#define GROUND_MAPS %d\n", p->defines, kinds[kind],
+                 part, maps) >= (int)sizeof defs)
         return cu_fail(err, "sky: shader defines too long");
-    if (!(p->prog[kind][part] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
+    if (!(p->prog[kind][part][maps] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
         return 1;
-    locs_get(gl, p->prog[kind][part], &p->loc[kind][part]);
+    locs_get(gl, p->prog[kind][part][maps], &p->loc[kind][part][maps]);
     return 0;
 }
 
@@ -42,7 +43,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
         (int)sizeof p->defines)
         return cu_fail(err, "sky: shader defines too long");
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
-        if (program(p, gl, kind, CU_SKY_BOTH, err))
+        if (program(p, gl, kind, CU_SKY_BOTH, 0, err))
             return 1;
     gl->GenTextures(1, &p->tables);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
@@ -73,8 +74,9 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
 {
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
         for (int part = 0; part < CU_SKY_PARTS; part++)
-            if (p->prog[kind][part])
-                gl->DeleteProgram(p->prog[kind][part]);
+            for (int maps = 0; maps <= CU_GROUND_MAPS; maps++)
+                if (p->prog[kind][part][maps])
+                    gl->DeleteProgram(p->prog[kind][part][maps]);
     if (p->tables)
         gl->DeleteTextures(1, &p->tables);
     memset(p, 0, sizeof *p);
@@ -136,7 +138,8 @@ static int rows_part(const float *m, double y0, double y1)
 }
 
 /* The full-screen triangle, a run of rows at a time with the program of what they hold: sky rows without the
- * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch), and with kind
+ * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch) and reading only the
+ * maps that hold shadows, and with kind
  * CU_SKY_OVER rows outside rows[0] .. rows[1] - 1 without the cloud image (CU_SKY_OUT: the same colours where the
  * image is empty). */
 static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, const int rows[2], cu_error *err)
@@ -152,6 +155,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindVertexArray(ctx->empty_vao);
     int h = ctx->height > 0 ? ctx->height : 1, split = ctx->scene->sky_model != CU_SKY_CONSTANT;
+    int maps = ctx->ground_maps >= 0 && ctx->ground_maps <= CU_GROUND_MAPS ? ctx->ground_maps : CU_GROUND_MAPS;
     const float *m = ctx->camera.inv_rot;
     gl->Enable(GL_SCISSOR_TEST);
     for (int row = 0; row < h;) {
@@ -162,11 +166,11 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
                (!split || rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) == part))
             end++;
         int k = kind == CU_SKY_OVER && !in ? CU_SKY_OUT : kind;
-        if (program(pass, gl, k, part, err)) {
+        if (program(pass, gl, k, part, maps, err)) {
             gl->Disable(GL_SCISSOR_TEST);
             return 1;
         }
-        uniforms(pass, ctx, pass->prog[k][part], &pass->loc[k][part], factor);
+        uniforms(pass, ctx, pass->prog[k][part][maps], &pass->loc[k][part][maps], factor);
         gl->Scissor(0, row, ctx->width, end - row);
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
         row = end;

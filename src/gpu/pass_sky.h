@@ -18,9 +18,11 @@ enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
 /* And by the rows they draw (sky.frag's SKY_PART): rows holding the horizon, rows of sky alone, rows of ground alone.
  * A software rasteriser runs both sides of a shader's branch on every pixel; a program without the branch does not. */
 enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
+/* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS). */
 typedef struct cu_pass_sky {
-    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS]; /* [kind][CU_SKY_BOTH] made at once, the others when first drawn */
-    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS];
+    /* [kind][CU_SKY_BOTH][0] made at once, the others when first drawn */
+    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1];
+    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1];
     char defines[2048];         /* the scene's, for the programs made later */
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
