@@ -358,10 +358,14 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Disable(GL_BLEND);
         gl->Disable(GL_STENCIL_TEST);
         gl->Disable(GL_DEPTH_TEST);
-        /* the rows the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads */
-        int grow = (g + 3) * n, rows[2] = {(int)floor(0.5 * (cloud_rect[1] + 1.0) * f->height) - grow,
-                                           (int)ceil(0.5 * (cloud_rect[3] + 1.0) * f->height) + grow};
-        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, rows, err))
+        /* the pixels the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads */
+        int grow = (g + 3) * n, reach[4];
+        for (int a = 0; a < 2; a++) {
+            int size = a ? f->height : f->width;
+            reach[a] = (int)floor(0.5 * (cloud_rect[a] + 1.0) * size) - grow;
+            reach[2 + a] = (int)ceil(0.5 * (cloud_rect[2 + a] + 1.0) * size) + grow;
+        }
+        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, reach, err))
             return 1;
         ctx->camera = nearest;
         ctx->cloud = nearest_cloud;

@@ -137,12 +137,26 @@ static int rows_part(const float *m, double y0, double y1)
     return above ? CU_SKY_ABOVE : below ? CU_SKY_BELOW : CU_SKY_BOTH;
 }
 
+/* Rows row .. end - 1, columns x0 .. x1 - 1 with the program of kind k, part and maps. */
+static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, int maps, int factor, const int box[4],
+                 cu_error *err)
+{
+    const cu_gl *gl = ctx->gl;
+    if (box[2] <= box[0] || box[3] <= box[1])
+        return 0;
+    if (program(pass, gl, k, part, maps, err))
+        return 1;
+    uniforms(pass, ctx, pass->prog[k][part][maps], &pass->loc[k][part][maps], factor);
+    gl->Scissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
+    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    return 0;
+}
+
 /* The full-screen triangle, a run of rows at a time with the program of what they hold: sky rows without the
- * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch) and reading only the
- * maps that hold shadows, and with kind
- * CU_SKY_OVER rows outside rows[0] .. rows[1] - 1 without the cloud image (CU_SKY_OUT: the same colours where the
- * image is empty). */
-static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, const int rows[2], cu_error *err)
+ * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch), reading only the maps
+ * that hold shadows; with kind CU_SKY_OVER, outside rect (x0, y0, x1, y1: pixels, half-open) without the cloud
+ * image (CU_SKY_OUT: the same colours where the image is empty). */
+static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, const int rect[4], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_DEPTH_TEST);
@@ -154,43 +168,46 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     gl->BindTexture(GL_TEXTURE_2D, pass->tables);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindVertexArray(ctx->empty_vao);
-    int h = ctx->height > 0 ? ctx->height : 1, split = ctx->scene->sky_model != CU_SKY_CONSTANT;
+    int w = ctx->width, h = ctx->height > 0 ? ctx->height : 1, split = ctx->scene->sky_model != CU_SKY_CONSTANT;
     int maps = ctx->ground_maps >= 0 && ctx->ground_maps <= CU_GROUND_MAPS ? ctx->ground_maps : CU_GROUND_MAPS;
+    int x0 = rect[0] < 0 ? 0 : rect[0] > w ? w : rect[0], x1 = rect[2] < x0 ? x0 : rect[2] > w ? w : rect[2];
     const float *m = ctx->camera.inv_rot;
+    int rc = 0;
     gl->Enable(GL_SCISSOR_TEST);
-    for (int row = 0; row < h;) {
+    for (int row = 0; row < h && !rc;) {
         /* a run: rows holding the same part, all on the same side of the cloud image's rows */
         int part = split ? rows_part(m, -1.0 + 2.0 * row / h, -1.0 + 2.0 * (row + 1) / h) : CU_SKY_BOTH;
-        int in = row >= rows[0] && row < rows[1], end = row + 1;
-        while (end < h && (end >= rows[0] && end < rows[1]) == in &&
+        int in = row >= rect[1] && row < rect[3], end = row + 1;
+        while (end < h && (end >= rect[1] && end < rect[3]) == in &&
                (!split || rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) == part))
             end++;
-        int k = kind == CU_SKY_OVER && !in ? CU_SKY_OUT : kind;
-        if (program(pass, gl, k, part, maps, err)) {
-            gl->Disable(GL_SCISSOR_TEST);
-            return 1;
+        if (kind == CU_SKY_OVER && in) { /* the image's columns with it, the others without */
+            const int left[4] = {0, row, x0, end}, mid[4] = {x0, row, x1, end}, right[4] = {x1, row, w, end};
+            rc = piece(pass, ctx, CU_SKY_OUT, part, maps, factor, left, err) ||
+                 piece(pass, ctx, CU_SKY_OVER, part, maps, factor, mid, err) ||
+                 piece(pass, ctx, CU_SKY_OUT, part, maps, factor, right, err);
+        } else {
+            const int all[4] = {0, row, w, end};
+            rc = piece(pass, ctx, kind == CU_SKY_OVER ? CU_SKY_OUT : kind, part, maps, factor, all, err);
         }
-        uniforms(pass, ctx, pass->prog[k][part][maps], &pass->loc[k][part][maps], factor);
-        gl->Scissor(0, row, ctx->width, end - row);
-        gl->DrawArrays(GL_TRIANGLES, 0, 3);
         row = end;
     }
     gl->Disable(GL_SCISSOR_TEST);
-    return 0;
+    return rc;
 }
 
 int cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output, cu_error *err)
 {
-    static const int all_rows[2] = {0, 1 << 30};
-    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, all_rows, err);
+    static const int everywhere[4] = {0, 0, 1 << 30, 1 << 30};
+    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, everywhere, err);
 }
 
-int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rows[2],
+int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rect[4],
                           cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_CLOUDS);
     gl->BindTexture(GL_TEXTURE_2D, clouds);
     gl->ActiveTexture(GL_TEXTURE0);
-    return draw(pass, ctx, CU_SKY_OVER, factor, rows, err);
+    return draw(pass, ctx, CU_SKY_OVER, factor, rect, err);
 }

@@ -35,8 +35,8 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
  * radiance, or (to_output) tone-mapped colour. Fails only where a program could not be made. */
 int cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output, cu_error *err);
 /* The sky with a cloud image (1/factor of the frame's size, premultiplied) over it, tone-mapped, into the bound
- * target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. Rows
- * outside rows[0] .. rows[1] - 1, which the image cannot reach, are drawn without it (the same colours). */
-int cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rows[2],
+ * target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. Pixels
+ * outside rect (x0, y0, x1, y1, half-open), which the image cannot reach, are drawn without it (the same colours). */
+int cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rect[4],
                           cu_error *err);
 #endif
