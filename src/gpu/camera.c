@@ -72,6 +72,27 @@ static int sphere_extent(double a, double d, double r, double k, double kz, doub
     return 0;
 }
 
+/* The extent on screen (NDC x0, y0, x1, y1) of the box lo .. hi through m (the box's frame -> clip): its eight
+ * corners bound its image once all lie in front of the eye (w > 0); 1 when one does not (the image is unbounded). */
+static int box_rect(mat4 m, vec3 lo, vec3 hi, double rect[4])
+{
+    rect[0] = rect[1] = 1;
+    rect[2] = rect[3] = -1;
+    for (int q = 0; q < 8; q++) {
+        vec3 p = v3(q & 1 ? hi.x : lo.x, q & 2 ? hi.y : lo.y, q & 4 ? hi.z : lo.z);
+        double clip[4];
+        for (int row = 0; row < 4; row++)
+            clip[row] = m.m[row] * p.x + m.m[4 + row] * p.y + m.m[8 + row] * p.z + m.m[12 + row];
+        if (!(clip[3] > 1e-9 * (fabs(clip[0]) + fabs(clip[1]) + 1e-30)))
+            return 1;
+        for (int a = 0; a < 2; a++) {
+            rect[a] = fmin(rect[a], clip[a] / clip[3]);
+            rect[2 + a] = fmax(rect[2 + a], clip[a] / clip[3]);
+        }
+    }
+    return 0;
+}
+
 int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull_r, cu_error *err)
 {
     for (int i = 0; i < 16; i++)
@@ -136,22 +157,9 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
                 rect[a] = -1;
                 rect[2 + a] = 1;
             }
-    } else {
-        for (int q = 0; q < 8; q++) {
-            vec3 p = v3_add(ce, v3(q & 1 ? rb : -rb, q & 2 ? rb : -rb, q & 4 ? rb : -rb));
-            double clip[4];
-            for (int row = 0; row < 4; row++)
-                clip[row] = pm[row] * p.x + pm[4 + row] * p.y + pm[8 + row] * p.z + pm[12 + row];
-            if (!(clip[3] > 1e-9 * (fabs(clip[0]) + fabs(clip[1]) + 1e-30))) {
-                rect[0] = rect[1] = -1;
-                rect[2] = rect[3] = 1;
-                break;
-            }
-            for (int a = 0; a < 2; a++) {
-                rect[a] = fmin(rect[a], clip[a] / clip[3]);
-                rect[2 + a] = fmax(rect[2 + a], clip[a] / clip[3]);
-            }
-        }
+    } else if (box_rect(proj, v3_sub(ce, v3(rb, rb, rb)), v3_add(ce, v3(rb, rb, rb)), rect)) {
+        rect[0] = rect[1] = -1;
+        rect[2] = rect[3] = 1;
     }
     for (int a = 0; a < 4; a++)
         c->ndc_rect[a] = fmin(fmax(rect[a], -1.0), 1.0);
@@ -187,22 +195,21 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
 
 void cu_camera_clip_rect(cu_camera *c, mat4 view, mat4 proj, vec3 origin, vec3 lo, vec3 hi)
 {
-    mat4 m = m4_mul(proj, m4_mul(view, translate(origin)));
-    double rect[4] = {1, 1, -1, -1};
-    for (int q = 0; q < 8; q++) {
-        vec3 p = v3(q & 1 ? hi.x : lo.x, q & 2 ? hi.y : lo.y, q & 4 ? hi.z : lo.z);
-        double clip[4];
-        for (int row = 0; row < 4; row++)
-            clip[row] = m.m[row] * p.x + m.m[4 + row] * p.y + m.m[8 + row] * p.z + m.m[12 + row];
-        if (!(clip[3] > 1e-9 * (fabs(clip[0]) + fabs(clip[1]) + 1e-30)))
-            return; /* a corner behind the eye: the box's image is unbounded */
-        for (int a = 0; a < 2; a++) {
-            rect[a] = fmin(rect[a], clip[a] / clip[3]);
-            rect[2 + a] = fmax(rect[2 + a], clip[a] / clip[3]);
-        }
-    }
+    double rect[4];
+    if (box_rect(m4_mul(proj, m4_mul(view, translate(origin))), lo, hi, rect))
+        return; /* a corner behind the eye: the box's image is unbounded */
     for (int a = 0; a < 2; a++) {
         c->ndc_rect[a] = fmax(c->ndc_rect[a], rect[a]);
         c->ndc_rect[2 + a] = fmin(c->ndc_rect[2 + a], rect[2 + a]);
+    }
+}
+
+void cu_ndc_rect_pixels(const double ndc[4], int width, int height, int grow, int px[4])
+{
+    int size[2] = {width, height};
+    for (int a = 0; a < 2; a++) {
+        double lo = floor(0.5 * (ndc[a] + 1.0) * size[a]) - grow, hi = ceil(0.5 * (ndc[2 + a] + 1.0) * size[a]) + grow;
+        px[a] = (int)fmin(fmax(lo, 0.0), (double)size[a]);
+        px[2 + a] = (int)fmin(fmax(hi, (double)px[a]), (double)size[a]);
     }
 }

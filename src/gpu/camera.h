@@ -11,6 +11,9 @@ int cu_camera_build(cu_camera *c, mat4 view, mat4 proj, vec3 origin, double hull
 /* Narrows c->ndc_rect to the image of a box (lo .. hi about origin, in the cloud's local frame) that holds the
  * cloud, where all its corners lie in front of the eye. */
 void cu_camera_clip_rect(cu_camera *c, mat4 view, mat4 proj, vec3 origin, vec3 lo, vec3 hi);
+/* The pixels of a width x height image about an NDC rectangle (x0, y0, x1, y1), grown by grow pixels on every side:
+ * x0, y0, x1, y1, half-open, within the image (empty where the rectangle is). */
+void cu_ndc_rect_pixels(const double ndc[4], int width, int height, int grow, int px[4]);
 /* A float matrix as given by the host, or NULL. */
 mat4 cu_camera_mat4(const float *m);
 #endif

@@ -359,12 +359,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Disable(GL_STENCIL_TEST);
         gl->Disable(GL_DEPTH_TEST);
         /* the pixels the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads */
-        int grow = (g + 3) * n, reach[4];
-        for (int a = 0; a < 2; a++) {
-            int size = a ? f->height : f->width;
-            reach[a] = (int)floor(0.5 * (cloud_rect[a] + 1.0) * size) - grow;
-            reach[2 + a] = (int)ceil(0.5 * (cloud_rect[2 + a] + 1.0) * size) + grow;
-        }
+        int reach[4];
+        cu_ndc_rect_pixels(cloud_rect, f->width, f->height, (g + 3) * n, reach);
         if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, reach, err))
             return 1;
         ctx->camera = nearest;

@@ -172,15 +172,17 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     int maps = ctx->ground_maps >= 0 && ctx->ground_maps <= CU_GROUND_MAPS ? ctx->ground_maps : CU_GROUND_MAPS;
     int x0 = rect[0] < 0 ? 0 : rect[0] > w ? w : rect[0], x1 = rect[2] < x0 ? x0 : rect[2] > w ? w : rect[2];
     const float *m = ctx->camera.inv_rot;
-    int rc = 0;
+    int rc = 0, part = split ? rows_part(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH;
     gl->Enable(GL_SCISSOR_TEST);
     for (int row = 0; row < h && !rc;) {
         /* a run: rows holding the same part, all on the same side of the cloud image's rows */
-        int part = split ? rows_part(m, -1.0 + 2.0 * row / h, -1.0 + 2.0 * (row + 1) / h) : CU_SKY_BOTH;
-        int in = row >= rect[1] && row < rect[3], end = row + 1;
-        while (end < h && (end >= rect[1] && end < rect[3]) == in &&
-               (!split || rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) == part))
+        int in = row >= rect[1] && row < rect[3], end = row + 1, next = part;
+        while (end < h) {
+            next = split ? rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) : CU_SKY_BOTH;
+            if (next != part || (end >= rect[1] && end < rect[3]) != in)
+                break;
             end++;
+        }
         if (kind == CU_SKY_OVER && in) { /* the image's columns with it, the others without */
             const int left[4] = {0, row, x0, end}, mid[4] = {x0, row, x1, end}, right[4] = {x1, row, w, end};
             rc = piece(pass, ctx, CU_SKY_OUT, part, maps, factor, left, err) ||
@@ -191,6 +193,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
             rc = piece(pass, ctx, kind == CU_SKY_OVER ? CU_SKY_OUT : kind, part, maps, factor, all, err);
         }
         row = end;
+        part = next;
     }
     gl->Disable(GL_SCISSOR_TEST);
     return rc;

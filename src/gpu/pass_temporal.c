@@ -1,5 +1,6 @@
 /* src/gpu/pass_temporal.c: the temporal grid's targets, Bayer order and resolve (see pass_temporal.h). */
 #include "pass_temporal.h"
+#include "camera.h"
 #include "error.h"
 #include <math.h>
 #include <string.h>
@@ -124,18 +125,6 @@ mat4 cu_pass_temporal_projection(const cu_pass_temporal *p, mat4 proj, int lw, i
     return m;
 }
 
-/* The pixels of the image about an NDC rectangle, grown by the reads about a pixel: its block's fresh samples and
- * the bilinear ones beyond (x0, y0, x1, y1, half-open, within the image). */
-static void resolve_rect(const cu_pass_temporal *p, const cu_target *t, const double ndc[4], int px[4])
-{
-    int grow = p->grid + 2, size[2] = {t->width, t->height};
-    for (int a = 0; a < 2; a++) {
-        double lo = floor(0.5 * (ndc[a] + 1.0) * size[a]) - grow, hi = ceil(0.5 * (ndc[2 + a] + 1.0) * size[a]) + grow;
-        px[a] = (int)fmax(lo, 0.0);
-        px[2 + a] = (int)fmin(hi, (double)size[a]);
-    }
-}
-
 void cu_pass_temporal_end(cu_pass_temporal *p, const cu_gpu_scene *ctx, const cu_camera *cam, double time,
                           const double ndc_rect[4])
 {
@@ -146,13 +135,14 @@ void cu_pass_temporal_end(cu_pass_temporal *p, const cu_gpu_scene *ctx, const cu
         gl->BindFramebuffer(GL_FRAMEBUFFER, dst->fbo);
         gl->DrawBuffers(2, both);
         gl->Viewport(0, 0, dst->width, dst->height);
+        /* grown by the reads about a pixel: its block's fresh samples and the bilinear ones beyond */
         int px[4];
-        resolve_rect(p, dst, ndc_rect, px);
+        cu_ndc_rect_pixels(ndc_rect, dst->width, dst->height, p->grid + 2, px);
         if (px[0] > 0 || px[1] > 0 || px[2] < dst->width || px[3] < dst->height) {
             gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
             gl->Clear(GL_COLOR_BUFFER_BIT);
             gl->Enable(GL_SCISSOR_TEST);
-            gl->Scissor(px[0], px[1], px[2] > px[0] ? px[2] - px[0] : 0, px[3] > px[1] ? px[3] - px[1] : 0);
+            gl->Scissor(px[0], px[1], px[2] - px[0], px[3] - px[1]);
         }
         gl->Disable(GL_BLEND);
         gl->Disable(GL_DEPTH_TEST);
