@@ -1,14 +1,14 @@
 #version 300 es
 // shaders_gles/sky.frag: background radiance: Preetham et al. 1999 analytic sky (Perez distribution of Y, x, y, read
-// as the product of its zenith and sun factors from the tables of sky.c: cu_sky_tables) or a constant sky, the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units);
-// with SKY_TONEMAP (a frame with no cloud in view) the display's colour straight away, as the tone map would make it.
-precision highp float;
-precision highp sampler2D; // lowp by default in GLES fragment shaders: the tables need their full precision
+// as the product of its zenith and sun factors from the tables of sky.c: cu_sky_tables, in sky.glsl) or a constant sky,
+// the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units); with
+// SKY_TONEMAP (a frame with no cloud in view) the display's colour straight away, as the tone map would make it.
+#include "sky.glsl"
+#if SKY_VERTEX
+in vec3 v_sky;                 // the sky's exposed radiance at this pixel, interpolated from the grid's corners
+#else
 in vec4 v_near, v_far;         // the pixel's points on the near and far planes, homogeneous (sky.vert)
-uniform vec3 u_sun_dir;
-uniform vec3 u_sun_irr;        // irradiance perpendicular to the rays
-uniform float u_out_max;       // what the target may hold (fp16 overflows at 65504; gpu_scene.c: cu_out_max)
-uniform vec3 u_ground;         // ground radiance
+#endif
 #if GROUND_SHADOW
 uniform vec3 u_ground_sun;     // the part of it the sun lights directly
 uniform sampler2D u_ground_tau;// the clouds' optical depth toward the sun above each ground point (pass_shadow.c),
@@ -46,25 +46,7 @@ vec3 ground(vec3 dir)
     return u_ground;
 }
 #endif
-uniform vec3 u_out_scale;      // exposure / white, or 1 for linear output (gpu_scene.c: cu_out_scale)
-#if SKY_CONSTANT
-uniform vec3 u_sky_color;
-#else
-uniform sampler2D u_sky_tables;// row 0: (Y, x, y)'s zenith factor at sqrt(cos theta); row 1: the sun's at sin(gamma/2)
-#endif
 out vec4 o_color;
-#ifndef SKY_TONEMAP
-#define SKY_TONEMAP 0
-#endif
-// SKY_PART (pass_sky.c): 0 draws rows that hold the horizon, 1 rows of sky alone, 2 rows of ground alone. A software
-// rasteriser (llvmpipe, Mesa 22) runs both sides of a branch on every pixel, so rows without the horizon take a
-// program without it.
-#ifndef SKY_PART
-#define SKY_PART 0
-#endif
-#ifndef SKY_COMPOSITE
-#define SKY_COMPOSITE 0
-#endif
 #if SKY_TONEMAP
 #include "tonecurve.glsl"
 #endif
@@ -90,30 +72,10 @@ vec4 clouds_at(vec2 frag)
 #endif
 
 #if !SKY_CONSTANT
-// Table row `row` at t in 0..1, interpolated here: RGBA32F, exact (fp16's rounding, amplified by the conversion from
-// xyY, would move the sky's colour by 0.3 %), and GLES 3.0 filters 32-bit float textures only with an extension.
-vec3 table(float t, int row)
-{
-    float f = t * float(SKY_TABLE - 1);
-    int i = min(int(f), SKY_TABLE - 2);
-    return mix(texelFetch(u_sky_tables, ivec2(i, row), 0).rgb, texelFetch(u_sky_tables, ivec2(i + 1, row), 0).rgb,
-               f - float(i));
-}
-vec3 xyY_to_rgb(float x, float y, float Y)
-{
-    float X = Y * x / max(y, 1e-4), Z = Y * (1.0 - x - y) / max(y, 1e-4);
-    return vec3(3.2406 * X - 1.5372 * Y - 0.4986 * Z, -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
-                0.0557 * X - 0.2040 * Y + 1.0570 * Z);
-}
-#endif
-
-#if !SKY_CONSTANT
 // Above the horizon: the Perez sky and the sun's disk.
 vec3 sky_above(vec3 dir)
 {
-    float t_zenith = sqrt(dir.y), t_sun = sqrt(clamp(0.5 - 0.5 * dot(dir, u_sun_dir), 0.0, 1.0));
-    vec3 Yxy = table(t_zenith, 0) * table(t_sun, 1);
-    vec3 L = max(xyY_to_rgb(Yxy.y, Yxy.z, Yxy.x), vec3(0.0));
+    vec3 L = perez_sky(dir);
     // Sun disk: angular radius 0.2666 deg, solid angle 6.8e-5 sr; radiance = irradiance / solid angle.
     if (dot(dir, u_sun_dir) > 0.99998917)
         L += u_sun_irr / 6.8e-5;
@@ -123,6 +85,10 @@ vec3 sky_above(vec3 dir)
 
 void main()
 {
+#if SKY_VERTEX
+    // The grid's cells hold no sun disk, no horizon and no ground shadow (pass_sky.c draws those a pixel at a time).
+    o_color = vec4(v_sky, 1.0);
+#else
     // The ray's direction from two depths (a perspective ray through the origin, or an orthographic view's one).
     vec3 dir = normalize(v_far.xyz / v_far.w - v_near.xyz / v_near.w);
 #if SKY_CONSTANT
@@ -136,7 +102,8 @@ void main()
 #else
     vec3 L = dir.y < 0.0 ? ground(dir) : sky_above(dir);
 #endif
-    o_color = vec4(min(L * u_out_scale, vec3(u_out_max)), 1.0);
+    o_color = vec4(exposed(L), 1.0);
+#endif
 #if SKY_COMPOSITE
     vec4 c = clouds_at(gl_FragCoord.xy); // at a factor of 1 the weights are exactly 1 and 0: the pixel's texel
     o_color.rgb = c.rgb + (1.0 - c.a) * o_color.rgb;

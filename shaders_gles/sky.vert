@@ -1,7 +1,42 @@
 #version 300 es
 // shaders_gles/sky.vert: one triangle covering the viewport, carrying each corner's points on the near and far planes
 // (homogeneous, through u_inv_viewproj): they are linear in the screen, so the sky's fragments get them interpolated
-// exactly and divide, instead of two matrix products a pixel.
+// exactly and divide, instead of two matrix products a pixel. With SKY_VERTEX (quality.sky_grid): a grid of cells
+// over rows of the viewport instead, the sky worked out at their corners and interpolated between them: it varies
+// slowly across the screen, and the fragments then do nothing but write it (pass_sky.c draws the sun's disk, the
+// horizon and the ground's shadows a pixel at a time).
+#ifndef SKY_VERTEX
+#define SKY_VERTEX 0
+#endif
+#if SKY_VERTEX
+#include "sky.glsl"
+uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
+uniform vec4 u_grid_box;       // the grid's first corner and its last (pixels)
+uniform vec2 u_grid_cell;      // a cell's width and height in pixels
+uniform vec2 u_grid_size;      // the viewport's
+uniform int u_grid_cols;       // cells across the box
+out vec3 v_sky;
+void main()
+{
+    // a strip a row of cells, corners alternately on its lower and upper edge, the rows joined by two repeated
+    // corners (the degenerate triangles between them cover nothing); the last row and column clamped to the box
+    int per = 2 * u_grid_cols + 4, row = gl_VertexID / per, j = gl_VertexID - row * per;
+    ivec2 at = j < per - 2 ? ivec2(j >> 1, row + (j & 1)) : ivec2(j == per - 2 ? u_grid_cols : 0, row + 1);
+    vec2 px = min(u_grid_box.xy + vec2(at) * u_grid_cell, u_grid_box.zw);
+    vec2 p = px / u_grid_size * 2.0 - 1.0;
+    vec4 n = u_inv_viewproj * vec4(p, -1.0, 1.0), f = u_inv_viewproj * vec4(p, 1.0, 1.0);
+    vec3 dir = normalize(f.xyz / f.w - n.xyz / n.w);
+#if SKY_CONSTANT
+    vec3 L = u_sky_color;
+#elif SKY_PART == 1
+    vec3 L = perez_sky(dir);
+#else
+    vec3 L = u_ground; // rows of ground without shadow maps
+#endif
+    v_sky = exposed(L); // linear: the display's curve at every pixel, as the sky under the clouds gets it later
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+#else
 precision highp float;
 uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
 out vec4 v_near, v_far;
@@ -12,3 +47,4 @@ void main()
     v_far = u_inv_viewproj * vec4(p, 1.0, 1.0);
     gl_Position = vec4(p, 0.0, 1.0);
 }
+#endif

@@ -114,6 +114,8 @@ struct cu_scene {
     int lod_pixels;           /* a field's clouds smaller on screen than this get the far level of detail */
     int impostor_pixels;      /* a cloud narrower than this on screen is drawn from its impostor (0: never) */
     double impostor_degrees;  /* ... remade when the direction to it has turned by more than this */
+    int sky_grid;             /* pixels: the sky worked out at the corners of cells this size and interpolated
+                               * (pass_sky.c); 0: at every pixel */
     int cloud_shadows;        /* 0/1: clouds shade each other and the ground */
     int integration;          /* 0 energy-conserving segments, 1 Kol's trapezoids of F (eq. 3.20) */
     int preset;               /* cu_preset: high (the defaults), medium, low (presets.c) */

@@ -71,10 +71,28 @@ static vec3 drift_of(const cu_renderer *r, int g)
     return r->ground[g].mixed ? v3(0, 0, 0) : v3_scale(r->ground[g].wind, r->time);
 }
 
+static const int NO_INK[4] = {0, 0, 0, 0};
+
+/* ink grown to hold rect (texels, half-open; an empty rect adds nothing). */
+static void ink_add(int ink[4], const int rect[4])
+{
+    if (rect[2] <= rect[0] || rect[3] <= rect[1])
+        return;
+    if (ink[2] <= ink[0] || ink[3] <= ink[1]) {
+        memcpy(ink, rect, 4 * sizeof *ink);
+        return;
+    }
+    for (int k = 0; k < 2; k++) {
+        ink[k] = rect[k] < ink[k] ? rect[k] : ink[k];
+        ink[k + 2] = rect[k + 2] > ink[k + 2] ? rect[k + 2] : ink[k + 2];
+    }
+}
+
 /* The texels reg = {x0, y0, x1, y1} of map g's target t over the square of side S about c (world), for the sun sd;
- * with `band` >= 0 the map made again in bands (band `band`), and what its clouds' densities are is kept. */
+ * with `band` >= 0 the map made again in bands (band `band`), and what its clouds' densities are is kept. The texels
+ * a shadow was drawn into are added to ink. */
 static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3 c, double S, const int reg[4],
-                        int band)
+                        int band, int ink[4])
 {
     cu_gpu_scene *ctx = &r->ctx;
     int size = t->width;
@@ -100,6 +118,7 @@ static void draw_ground(cu_renderer *r, int g, const cu_target *t, vec3 sd, vec3
             rect[k] = rect[k] > reg[k] ? rect[k] : reg[k];
             rect[k + 2] = rect[k + 2] < reg[k + 2] ? rect[k + 2] : reg[k + 2];
         }
+        ink_add(ink, rect);
         vec3 origin = v3_add(v3_sub(c, o), v3_scale(sd, D));
         cu_pass_shadow_add(&r->pass_shadow, ctx, &cl->cloud, cl->ke_rest * q / 64.0, origin, v3(0.5 * S, 0, 0),
                            v3(0, 0, 0.5 * S), size, rect);
@@ -197,7 +216,7 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
         m->sig = sig;
         m->patches++;
         for (int i = 0; i < pl.n; i++)
-            draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, pl.rect[i], -1);
+            draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, pl.rect[i], -1, m->ink);
     } else if (sig != m->sig && (bands == 1 || !m->sig || jumped || lagged || moved || unseen)) {
         m->band = 0; /* a band under way is overtaken */
         m->sig = sig;
@@ -205,7 +224,8 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
         m->sun = sd;
         m->at = v3(c.x, c.z, S);
         const int whole[4] = {0, 0, size, size};
-        draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, whole, -1);
+        memcpy(m->ink, NO_INK, sizeof m->ink);
+        draw_ground(r, g, &m->map, sd, v3_add(c, drift), S, whole, -1, m->ink);
     } else if (sig != m->sig || m->band > 0) {
         if (m->band == 0) {
             if (!m->next.fbo && cu_pass_shadow_target(&r->gl, size, &m->next, err))
@@ -214,11 +234,12 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
             m->next_scene = pos;
             m->next_sun = sd;
             m->next_at = v3(c.x, c.z, S);
+            memcpy(m->next_ink, NO_INK, sizeof m->next_ink);
         }
         vec3 at = m->next_at;
         int b = m->band++;
         const int rows[4] = {0, size * b / bands, size, size * (b + 1) / bands};
-        draw_ground(r, g, &m->next, m->next_sun, v3(at.x + drift.x, 0, at.y + drift.z), at.z, rows, b);
+        draw_ground(r, g, &m->next, m->next_sun, v3(at.x + drift.x, 0, at.y + drift.z), at.z, rows, b, m->next_ink);
         if (m->band == bands) { /* the last band: the new map in, the old one the next spare */
             cu_target t = m->map;
             m->map = m->next;
@@ -227,6 +248,7 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
             m->scene = m->next_scene;
             m->sun = m->next_sun;
             m->at = m->next_at;
+            memcpy(m->ink, m->next_ink, sizeof m->ink);
             m->band = 0;
             for (int j = 0; j < r->clouds.n; j++)
                 if (map_of(r, &r->clouds.slot[j]) == g)
@@ -239,6 +261,15 @@ static int update_map(cu_renderer *r, int g, vec3 sd, vec3 eye, int jumped, int 
     }
     r->ctx.ground_tau[g] = m->map.tex[0];
     r->ctx.ground_map[g] = v3(m->at.x + drift.x, m->at.y + drift.z, m->at.z);
+    /* the inked texels on the ground, a texel wider on every side (the sky pass filters the map bilinearly) */
+    double *ink = r->ctx.ground_ink[g], side = m->at.z / size;
+    vec3 at = r->ctx.ground_map[g];
+    ink[0] = at.x + (m->ink[0] - 0.5 * size - 1) * side;
+    ink[1] = at.y + (m->ink[1] - 0.5 * size - 1) * side;
+    ink[2] = at.x + (m->ink[2] - 0.5 * size + 1) * side;
+    ink[3] = at.y + (m->ink[3] - 0.5 * size + 1) * side;
+    if (m->ink[2] <= m->ink[0] || m->ink[3] <= m->ink[1])
+        ink[0] = 1, ink[2] = 0; /* no shadow on it */
     return 0;
 }
 
@@ -250,6 +281,8 @@ int cu_frame_ground_shadow(cu_renderer *r, cu_error *err)
     for (int g = 0; g < CU_GROUND_MAPS; g++) {
         ctx->ground_tau[g] = r->pass_shadow.zero_tex;
         ctx->ground_map[g] = v3(0, 0, 1);
+        ctx->ground_ink[g][0] = 1; /* nowhere */
+        ctx->ground_ink[g][2] = 0;
     }
     ctx->ground_maps = 0;
     vec3 sd = ctx->sky->sun_dir, eye = ctx->camera.pos;

@@ -108,6 +108,8 @@ typedef struct cu_gpu_scene {
     GLuint ground_tau[CU_GROUND_MAPS]; /* the ground's shadow maps, a wind each (frame_ground.c) or a texture of */
     vec3 ground_map[CU_GROUND_MAPS];   /* zeros; each one's centre (x, z, world) and side (m) */
     int ground_maps;                   /* how many of them hold shadows this frame (the first ones) */
+    double ground_ink[CU_GROUND_MAPS][4]; /* where on the ground each can be other than zero: world x0, z0, x1, z1
+                                           * (x1 < x0: nowhere) */
     cu_slab_maps slab;       /* published by the slab pass */
     GLuint msd_tex;          /* the cloud's diffusion grid (pass_msd.c), its cloud-local corner and extent (m) */
     vec3 msd_lo, msd_size;

@@ -1,5 +1,6 @@
 /* src/gpu/pass_sky.c: the sky pass (see pass_sky.h). */
 #include "pass_sky.h"
+#include "camera.h"
 #include "error.h"
 #include <stdio.h>
 #include <math.h>
@@ -11,6 +12,7 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
 #define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
     LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color);
     LOC(ground_sun); LOC(eye); LOC(gmap); LOC(gmap2); LOC(shadow_g); LOC(cloud_factor);
+    LOC(grid_box); LOC(grid_cell); LOC(grid_size); LOC(grid_cols);
 #undef LOC
     cu_gpu_unit(gl, prog, "u_clouds", CU_UNIT_CLOUDS);
     cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
@@ -18,20 +20,20 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
-/* Makes the program of a kind, part and count of ground maps, once. */
-static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, cu_error *err)
+/* Makes the program of a kind, part, count of ground maps and grid (0, 1), once. */
+static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, int grid, cu_error *err)
 {
     static const char *const kinds[CU_SKY_KINDS] = {"", "#define SKY_TONEMAP 1\n",
                                                     "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n"};
-    if (p->prog[kind][part][maps])
+    if (p->prog[kind][part][maps][grid])
         return 0;
     char defs[2200];
-    if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n#define GROUND_MAPS %d\n", p->defines, kinds[kind],
-                 part, maps) >= (int)sizeof defs)
+    if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n#define GROUND_MAPS %d\n#define SKY_VERTEX %d\n",
+                 p->defines, kinds[kind], part, maps, grid) >= (int)sizeof defs)
         return cu_fail(err, "sky: shader defines too long");
-    if (!(p->prog[kind][part][maps] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
+    if (!(p->prog[kind][part][maps][grid] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
         return 1;
-    locs_get(gl, p->prog[kind][part][maps], &p->loc[kind][part][maps]);
+    locs_get(gl, p->prog[kind][part][maps][grid], &p->loc[kind][part][maps][grid]);
     return 0;
 }
 
@@ -43,7 +45,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
         (int)sizeof p->defines)
         return cu_fail(err, "sky: shader defines too long");
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
-        if (program(p, gl, kind, CU_SKY_BOTH, 0, err))
+        if (program(p, gl, kind, CU_SKY_BOTH, 0, 0, err))
             return 1;
     gl->GenTextures(1, &p->tables);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
@@ -75,8 +77,9 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
         for (int part = 0; part < CU_SKY_PARTS; part++)
             for (int maps = 0; maps <= CU_GROUND_MAPS; maps++)
-                if (p->prog[kind][part][maps])
-                    gl->DeleteProgram(p->prog[kind][part][maps]);
+                for (int grid = 0; grid < 2; grid++)
+                    if (p->prog[kind][part][maps][grid])
+                        gl->DeleteProgram(p->prog[kind][part][maps][grid]);
     if (p->tables)
         gl->DeleteTextures(1, &p->tables);
     memset(p, 0, sizeof *p);
@@ -109,57 +112,176 @@ static void uniforms(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, co
         tables_update(pass, gl, sky);
 }
 
-/* The height of the view direction at the viewport's NDC (x, y), over its length, through the sky's matrix as
- * sky.vert and sky.frag make it (column-major, clip -> direction). Affine in the screen up to a positive factor
- * (sign(d.y) is that of the far point's y), so over a rectangle its sign is settled at the corners. */
-static double height_at(const float *m, double x, double y)
+/* The view direction at the viewport's NDC (x, y), unit, through the sky's matrix as sky.vert and sky.frag make it
+ * (column-major, clip -> direction). Its height is affine in the screen up to a positive factor (sign(d.y) is that
+ * of the far point's y), so over a rectangle its sign is settled at the corners. */
+static vec3 dir_at(const float *m, double x, double y)
 {
     double n[4], f[4];
     for (int r = 0; r < 4; r++) {
         n[r] = m[r] * x + m[4 + r] * y - m[8 + r] + m[12 + r];
         f[r] = m[r] * x + m[4 + r] * y + m[8 + r] + m[12 + r];
     }
-    double d[3] = {f[0] / f[3] - n[0] / n[3], f[1] / f[3] - n[1] / n[3], f[2] / f[3] - n[2] / n[3]};
-    return d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return v3_norm(v3(f[0] / f[3] - n[0] / n[3], f[1] / f[3] - n[1] / n[3], f[2] / f[3] - n[2] / n[3]));
 }
 
-/* What the rows between NDC y0 and y1 hold: sky alone, ground alone, or both. A margin far above fp32's rounding of
- * the direction in the shader keeps the rows near the horizon with the branch; NaN (a degenerate camera) too. */
+#define SKY_LOW 3       /* rows of sky alone, low: within LOW_SKY of the horizon (draw's run of rows) */
+#define LOW_SKY 0.0872  /* the sine of 5 degrees: below, the Perez sky's colour bends toward the horizon's within a
+                         * few degrees (its zenith terms e^(B / cos theta)); the grid's rows there are a quarter as
+                         * high (piece: within a level of the display where square cells would be 3-5 off) */
+
+/* What the rows between NDC y0 and y1 hold: sky alone (SKY_LOW near the horizon), ground alone, or both. A margin
+ * far above fp32's rounding of the direction in the shader keeps the rows near the horizon with the branch; NaN (a
+ * degenerate camera) too. */
 static int rows_part(const float *m, double y0, double y1)
 {
     const double margin = 1e-4;
-    double h[4] = {height_at(m, -1, y0), height_at(m, 1, y0), height_at(m, -1, y1), height_at(m, 1, y1)};
-    int above = 1, below = 1;
+    double h[4] = {dir_at(m, -1, y0).y, dir_at(m, 1, y0).y, dir_at(m, -1, y1).y, dir_at(m, 1, y1).y};
+    int above = 1, below = 1, low = 0;
     for (int k = 0; k < 4; k++) {
         above = above && h[k] > margin;
         below = below && h[k] < -margin;
+        low = low || h[k] < LOW_SKY;
     }
-    return above ? CU_SKY_ABOVE : below ? CU_SKY_BELOW : CU_SKY_BOTH;
+    return above ? (low ? SKY_LOW : CU_SKY_ABOVE) : below ? CU_SKY_BELOW : CU_SKY_BOTH;
 }
 
-/* Rows row .. end - 1, columns x0 .. x1 - 1 with the program of kind k, part and maps. */
+#define SUN_RADIUS 0.004654 /* rad: acos(0.99998917), sky.frag's test for the disk */
+#define SUN_CELL 16         /* pixels a side of the cells sun_box tests */
+
+/* The pixels (x0, y0, x1, y1, half-open) the grid's interpolation cannot serve near the sun: its disk, and the
+ * aureole about it, whose Perez term C e^(D gamma) peaks in a cone at the sun, which a cell across it would cut
+ * (at a clear sky's C = 5.3 and D = -2.3, by several levels of the display); two grid cells' width of it away its
+ * curvature is small enough. The union of the cells of a coarse grid whose directions come within the disk's radius,
+ * that width and a margin far above fp32's rounding of the sun; none: an empty box. A cell's directions lie within
+ * the cap about their mean as wide as the largest angle to a corner (its image on the sphere is bounded by great
+ * circles, and a cap narrower than a hemisphere is convex), so a cell farther from the sun than that plus the radius
+ * holds none of it (a cell of the grid, `grid` pixels, spans about 2 wide grid / SUN_CELL / sqrt 2 of it). NaN (a
+ * degenerate camera) counts as near. */
+static void sun_box(const float *m, vec3 sun, int w, int h, int grid, int box[4])
+{
+    int nx = (w + SUN_CELL - 1) / SUN_CELL, ny = (h + SUN_CELL - 1) / SUN_CELL;
+    box[0] = box[1] = 1 << 30;
+    box[2] = box[3] = 0;
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++) {
+            int px[2] = {i * SUN_CELL, (i + 1) * SUN_CELL < w ? (i + 1) * SUN_CELL : w};
+            int py[2] = {j * SUN_CELL, (j + 1) * SUN_CELL < h ? (j + 1) * SUN_CELL : h};
+            vec3 c[4], mean = v3(0, 0, 0);
+            for (int k = 0; k < 4; k++) {
+                c[k] = dir_at(m, 2.0 * px[k & 1] / w - 1.0, 2.0 * py[k >> 1] / h - 1.0);
+                mean = v3_add(mean, c[k]);
+            }
+            mean = v3_norm(mean);
+            double wide = 0.0;
+            for (int k = 0; k < 4; k++)
+                wide = fmax(wide, acos(fmin(fmax(v3_dot(mean, c[k]), -1.0), 1.0)));
+            double far = acos(fmin(fmax(v3_dot(mean, sun), -1.0), 1.0));
+            if (!(far > wide * (1.0 + 3.0 * grid / SUN_CELL) + SUN_RADIUS + 1e-3)) {
+                box[0] = px[0] < box[0] ? px[0] : box[0];
+                box[1] = py[0] < box[1] ? py[0] : box[1];
+                box[2] = px[1] > box[2] ? px[1] : box[2];
+                box[3] = py[1] > box[3] ? py[1] : box[3];
+            }
+        }
+}
+
+/* Pixels box (x0, y0, x1, y1, half-open) with the program of kind k, part and maps: at every pixel (sun NULL, or
+ * quality.sky_grid 0, or a part whose sky is not smooth), else at the corners of quality.sky_grid's cells, and then
+ * the pixels of sun (sun_box) inside the box at every pixel again. */
 static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, int maps, int factor, const int box[4],
-                 cu_error *err)
+                 const int sun[4], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     if (box[2] <= box[0] || box[3] <= box[1])
         return 0;
-    if (program(pass, gl, k, part, maps, err))
+    int low = part == SKY_LOW;
+    part = low ? CU_SKY_ABOVE : part;
+    int cell = ctx->scene->sky_grid, high = low && cell > 4 ? cell / 4 : cell;
+    int constant = ctx->scene->sky_model == CU_SKY_CONSTANT;
+    int grid = sun && cell > 0 && (constant || part == CU_SKY_ABOVE || (part == CU_SKY_BELOW && maps == 0));
+    if (program(pass, gl, k, part, maps, grid, err))
         return 1;
-    uniforms(pass, ctx, pass->prog[k][part][maps], &pass->loc[k][part][maps], factor);
+    const cu_sky_locs *l = &pass->loc[k][part][maps][grid];
+    uniforms(pass, ctx, pass->prog[k][part][maps][grid], l, factor);
     gl->Scissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
-    gl->DrawArrays(GL_TRIANGLES, 0, 3);
-    return 0;
+    if (!grid) {
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        return 0;
+    }
+    /* the cells laid from the viewport's corner, whatever the box: every piece and every kind of pass (a frame's
+     * sky drawn under the clouds, or straight to the output) then interpolates between the same corners */
+    int w = ctx->width, h = ctx->height > 0 ? ctx->height : 1, ox = box[0] / cell * cell, oy = box[1] / high * high;
+    int cols = (box[2] - ox + cell - 1) / cell, rows = (box[3] - oy + high - 1) / high;
+    gl->Uniform4f(l->grid_box, (float)ox, (float)oy, (float)w, (float)h);
+    gl->Uniform2f(l->grid_cell, (float)cell, (float)high);
+    gl->Uniform2f(l->grid_size, (float)w, (float)h);
+    gl->Uniform1i(l->grid_cols, cols);
+    gl->DrawArrays(GL_TRIANGLE_STRIP, 0, (2 * cols + 4) * rows - 2);
+    const int disk[4] = {sun[0] > box[0] ? sun[0] : box[0], sun[1] > box[1] ? sun[1] : box[1],
+                         sun[2] < box[2] ? sun[2] : box[2], sun[3] < box[3] ? sun[3] : box[3]};
+    return part != CU_SKY_BELOW && piece(pass, ctx, k, part, maps, factor, disk, NULL, err);
+}
+
+/* The pixels (x0, y0, x1, y1, half-open) where the ground can show the first `maps` shadow maps: the image of the
+ * rectangles that can hold shadow (gpu_scene.h ground_ink) on the ground, through the sky's matrix from the eye,
+ * clipped to what lies in front of it; an empty box where none shows. Elsewhere every map reads zero there, and the
+ * ground is the same without them. */
+static void shadow_box(const cu_gpu_scene *ctx, int maps, int w, int h, int box[4])
+{
+    const float *m = ctx->camera.rot_vp;
+    vec3 eye = ctx->camera.pos;
+    double ndc[4] = {1, 1, -1, -1};
+    for (int g = 0; g < maps; g++) {
+        const double *ink = ctx->ground_ink[g];
+        if (!(ink[2] > ink[0] && ink[3] > ink[1]))
+            continue;
+        double c[4][4], in[8][4];
+        for (int k = 0; k < 4; k++) { /* the corners, around the rectangle, in clip space */
+            double p[3] = {ink[k == 1 || k == 2 ? 2 : 0] - eye.x, -eye.y, ink[k >= 2 ? 3 : 1] - eye.z};
+            for (int r = 0; r < 4; r++)
+                c[k][r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+        }
+        int n = 0; /* the polygon cut to w >= eps (Sutherland-Hodgman against one plane) */
+        for (int k = 0; k < 4; k++) {
+            const double *a = c[k], *b = c[(k + 1) & 3];
+            double eps = 1e-7 * (fabs(a[0]) + fabs(a[1]) + fabs(b[0]) + fabs(b[1])) + 1e-30;
+            if (a[3] >= eps)
+                memcpy(in[n++], a, sizeof in[0]);
+            if ((a[3] >= eps) != (b[3] >= eps)) {
+                double t = (eps - a[3]) / (b[3] - a[3]);
+                for (int r = 0; r < 4; r++)
+                    in[n][r] = a[r] + t * (b[r] - a[r]);
+                n++;
+            }
+        }
+        for (int k = 0; k < n; k++)
+            for (int a = 0; a < 2; a++) {
+                double v = in[k][a] / in[k][3];
+                v = isfinite(v) ? v : (v > 0 ? 2.0 : -2.0);
+                ndc[a] = fmin(ndc[a], v);
+                ndc[2 + a] = fmax(ndc[2 + a], v);
+            }
+    }
+    for (int a = 0; a < 4; a++)
+        ndc[a] = fmin(fmax(ndc[a], -1.0), 1.0);
+    cu_ndc_rect_pixels(ndc, w, h, 1, box);
+}
+
+static int in_rows(const int box[4], int row)
+{
+    return row >= box[1] && row < box[3];
 }
 
 /* The full-screen triangle, a run of rows at a time with the program of what they hold: sky rows without the
  * ground's shadow maps, ground rows without the Perez tables (a constant sky has no branch), reading only the maps
- * that hold shadows; with kind CU_SKY_OVER, outside rect (x0, y0, x1, y1: pixels, half-open) without the cloud
- * image (CU_SKY_OUT: the same colours where the image is empty). */
+ * that hold shadows and only where they can show any (shadow_box); with kind CU_SKY_OVER, outside rect (x0, y0, x1,
+ * y1: pixels, half-open) without the cloud image (CU_SKY_OUT: the same colours where the image is empty). */
 static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor, const int rect[4], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_DEPTH_TEST);
+    gl->Disable(GL_CULL_FACE);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_SHADOW);
     gl->BindTexture(GL_TEXTURE_2D, ctx->ground_tau[0]);
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_GROUND2);
@@ -172,25 +294,40 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     int maps = ctx->ground_maps >= 0 && ctx->ground_maps <= CU_GROUND_MAPS ? ctx->ground_maps : CU_GROUND_MAPS;
     int x0 = rect[0] < 0 ? 0 : rect[0] > w ? w : rect[0], x1 = rect[2] < x0 ? x0 : rect[2] > w ? w : rect[2];
     const float *m = ctx->camera.inv_rot;
-    int rc = 0, part = split ? rows_part(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH;
+    int rc = 0, part = split ? rows_part(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH, sun[4] = {0, 0, 0, 0};
+    int shade[4] = {0, 0, 0, 0}, over = kind == CU_SKY_OVER;
+    if (ctx->scene->sky_grid > 0)
+        sun_box(m, ctx->sun_dir, w, h, ctx->scene->sky_grid, sun);
+    if (maps > 0)
+        shadow_box(ctx, maps, w, h, shade);
     gl->Enable(GL_SCISSOR_TEST);
     for (int row = 0; row < h && !rc;) {
-        /* a run: rows holding the same part, all on the same side of the cloud image's rows */
-        int in = row >= rect[1] && row < rect[3], end = row + 1, next = part;
+        /* a run: rows holding the same part, all on the same side of the cloud image's rows and the shadows' */
+        int in = in_rows(rect, row), dark = in_rows(shade, row), end = row + 1, next = part;
         while (end < h) {
             next = split ? rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) : CU_SKY_BOTH;
-            if (next != part || (end >= rect[1] && end < rect[3]) != in)
+            if (next != part || in_rows(rect, end) != in || in_rows(shade, end) != dark)
                 break;
             end++;
         }
-        if (kind == CU_SKY_OVER && in) { /* the image's columns with it, the others without */
-            const int left[4] = {0, row, x0, end}, mid[4] = {x0, row, x1, end}, right[4] = {x1, row, w, end};
-            rc = piece(pass, ctx, CU_SKY_OUT, part, maps, factor, left, err) ||
-                 piece(pass, ctx, CU_SKY_OVER, part, maps, factor, mid, err) ||
-                 piece(pass, ctx, CU_SKY_OUT, part, maps, factor, right, err);
-        } else {
-            const int all[4] = {0, row, w, end};
-            rc = piece(pass, ctx, kind == CU_SKY_OVER ? CU_SKY_OUT : kind, part, maps, factor, all, err);
+        /* and in it, columns: the cloud image's with it, the others without; the shadows' with the maps */
+        int cut[6] = {0, w, w, w, w, w}, n = 2;
+        if (over && in)
+            cut[n++] = x0, cut[n++] = x1;
+        if (dark && part != CU_SKY_ABOVE && part != SKY_LOW)
+            cut[n++] = shade[0], cut[n++] = shade[2];
+        for (int i = 1; i < n; i++) /* insertion sort of at most six */
+            for (int j = i; j > 0 && cut[j - 1] > cut[j]; j--) {
+                int t = cut[j];
+                cut[j] = cut[j - 1];
+                cut[j - 1] = t;
+            }
+        for (int i = 0; i + 1 < n && !rc; i++) {
+            const int box[4] = {cut[i], row, cut[i + 1], end};
+            int image = over && in && box[0] >= x0 && box[2] <= x1;
+            int shaded = dark && box[0] >= shade[0] && box[2] <= shade[2] && part != CU_SKY_ABOVE && part != SKY_LOW;
+            rc = piece(pass, ctx, over ? (image ? CU_SKY_OVER : CU_SKY_OUT) : kind, part, shaded ? maps : 0, factor,
+                       box, sun, err);
         }
         row = end;
         part = next;

@@ -9,6 +9,7 @@ typedef struct cu_sky_locs {
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color;
     GLint ground_sun, eye, gmap, gmap2, shadow_g, cloud_factor;
+    GLint grid_box, grid_cell, grid_size, grid_cols;
 } cu_sky_locs;
 
 /* The programs by kind: radiance into the HDR target under the clouds; for a frame with no cloud in view, the
@@ -18,11 +19,13 @@ enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
 /* And by the rows they draw (sky.frag's SKY_PART): rows holding the horizon, rows of sky alone, rows of ground alone.
  * A software rasteriser runs both sides of a shader's branch on every pixel; a program without the branch does not. */
 enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
-/* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS). */
+/* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS); and by
+ * where the sky is worked out: at every pixel, or at the corners of quality.sky_grid's cells (sky.vert SKY_VERTEX:
+ * the sky alone, the ground without shadow maps, a constant sky; the sun's disk then drawn over a pixel at a time). */
 typedef struct cu_pass_sky {
-    /* [kind][CU_SKY_BOTH][0] made at once, the others when first drawn */
-    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1];
-    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1];
+    /* [kind][CU_SKY_BOTH][0][0] made at once, the others when first drawn */
+    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][2];
+    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][2];
     char defines[2048];         /* the scene's, for the programs made later */
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */

@@ -22,12 +22,15 @@ typedef struct cu_ground_map {
     vec3 wind;            /* m/s */
     int mixed;            /* clouds on other winds too: it does not drift */
     cu_target map;
+    int ink[4];           /* the texels of map that can hold shadow (x0, y0, x1, y1, half-open; empty: none): every
+                           * other texel is zero, so the sky pass reads no map there (pass_sky.c) */
     uint64_t sig;
     uint64_t scene;       /* the positions, in its drifting frame, of its clouds that shade its square */
     vec3 sun;             /* the sun it was made for */
     vec3 at;              /* its square: centre x, z (drifting frame) and side (m) */
     cu_target next;       /* quality.sun_map_frames > 1: made again a band of rows a frame, then swapped */
     uint64_t next_sig, next_scene;
+    int next_ink[4];
     vec3 next_sun, next_at;
     int band;             /* its bands drawn so far (0: none under way) */
     long patches;         /* times only the texels of clouds whose density changed were made again */

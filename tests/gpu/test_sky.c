@@ -4,7 +4,8 @@
  * the product of two tables (cu_sky_tables); this is what says the tables, their spacing, their storage and the
  * shader's lookup reproduce the model. And the rows: the pass draws rows of sky alone, of ground alone and rows
  * holding the horizon with programs of their own (pass_sky.c); host cameras rolled and pitched every way put each
- * pixel above the horizon on the sky and each below on the ground, in radiance and tone-mapped. */
+ * pixel above the horizon on the sky and each below on the ground, in radiance and tone-mapped. And the grid
+ * (quality.sky_grid): the sky interpolated from the corners of cells, against the sky at every pixel. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -104,7 +105,7 @@ static void test_sky_is_preetham(void **st)
             for (int j = 0; j < 2; j++)
                 for (int v = 0; v < 4; v++) {
                     const char *sets[] = {"cloud.density=0", "sky.model=preetham", elevations[i], turbidities[j],
-                                          views[v], "camera.fov=70", NULL};
+                                          views[v], "camera.fov=70", "quality.sky_grid=0", NULL};
                     double median, err = sky_error(&c, sets, &median);
                     if (err > worst || getenv("CUMULO_TEST_DEBUG"))
                         printf("%s: %s %s %s: max %.5f median %.5f\n", backend_names[b], elevations[i],
@@ -122,8 +123,10 @@ static void test_sky_is_preetham(void **st)
     }
 }
 
-/* A host camera at the scene's position looking along dir, rolled by roll degrees about it. */
-static void rolled_camera(const cu_scene *s, vec3 dir, double roll, float view[16], float proj[16], mat4 *inv)
+/* A host camera at the scene's position looking along dir, rolled by roll degrees about it, fov degrees high, for a w x
+ * h frame. */
+static void rolled_camera(const cu_scene *s, vec3 dir, double roll, double fov, int w, int h, float view[16],
+                          float proj[16], mat4 *inv)
 {
     vec3 f = v3_norm(dir), side = v3_cross(f, v3(0, 1, 0));
     if (v3_len(side) < 1e-6) /* straight up or down */
@@ -132,16 +135,17 @@ static void rolled_camera(const cu_scene *s, vec3 dir, double roll, float view[1
     double a = roll * CU_PI / 180;
     vec3 up = v3_add(v3_scale(v3_cross(side, f), cos(a)), v3_scale(side, sin(a)));
     mat4 rot = m4_look_dir(v3(0, 0, 0), f, up), eye = m4_look_dir(v3_from(s->cam_pos), f, up);
-    mat4 p = m4_perspective(70.0 * CU_PI / 180.0, (double)W / H, 1.0, 1e5);
+    mat4 p = m4_perspective(fov * CU_PI / 180.0, (double)w / h, 1.0, 1e5);
     m4_to_float(eye, view);
     m4_to_float(p, proj);
     *inv = m4_inverse(m4_mul(p, rot));
 }
 
-/* The direction through the centre of pixel (x, y), top row first, through inv (clip -> direction). */
-static vec3 pixel_dir(mat4 inv, int x, int y)
+/* The direction through the centre of pixel (x, y) of a w x h frame, top row first, through inv (clip ->
+ * direction). */
+static vec3 pixel_dir(mat4 inv, int w, int h, int x, int y)
 {
-    double c[4] = {(x + 0.5) / W * 2 - 1, 1 - (y + 0.5) / H * 2, 1, 1}, o[4] = {0, 0, 0, 0};
+    double c[4] = {(x + 0.5) / w * 2 - 1, 1 - (y + 0.5) / h * 2, 1, 1}, o[4] = {0, 0, 0, 0};
     for (int i = 0; i < 4; i++)
         for (int k = 0; k < 4; k++)
             o[i] += inv.m[k * 4 + i] * c[k];
@@ -159,7 +163,7 @@ static void test_sky_and_ground_in_rows(void **st)
         tr_ctx c;
         if (tr_open(&c, &cu_display_egl, W, H, linear))
             fail_msg("%s", c.err);
-        const char *sets[] = {"cloud.density=0", "sky.model=preetham", "sun.elevation=35", NULL};
+        const char *sets[] = {"cloud.density=0", "sky.model=preetham", "sun.elevation=35", "quality.sky_grid=0", NULL};
         if (tr_render(&c, "scenes/cumulus.scene", sets))
             fail_msg("%s", c.err);
         cu_scene *s = scene_with(sets);
@@ -175,7 +179,7 @@ static void test_sky_and_ground_in_rows(void **st)
         for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
             float view[16], proj[16];
             mat4 inv;
-            rolled_camera(s, v3(views[v][0], views[v][1], views[v][2]), views[v][3], view, proj, &inv);
+            rolled_camera(s, v3(views[v][0], views[v][1], views[v][2]), views[v][3], 70, W, H, view, proj, &inv);
             unsigned fbo;
             int w, h;
             c.be->frame(c.disp, &fbo, &w, &h);
@@ -190,7 +194,7 @@ static void test_sky_and_ground_in_rows(void **st)
             double worst = 0;
             for (int y = 0; y < H; y++)
                 for (int x = 0; x < W; x++) {
-                    vec3 d = pixel_dir(inv, x, y);
+                    vec3 d = pixel_dir(inv, W, H, x, y);
                     if (fabs(d.y) < 1e-3 || v3_dot(d, sky.sun_dir) > cos(1.0 * CU_PI / 180.0))
                         continue;
                     double want[3];
@@ -232,9 +236,130 @@ static void test_sky_and_ground_in_rows(void **st)
     }
 }
 
+#define GW 400
+#define GH 300
+/* One frame of the sky (cloud.density 0, so the ground has no shadow maps) through a host camera along dir rolled by
+ * roll, into rgba (tone-mapped) or rgb (linear), with sets applied. */
+static void host_frame(tr_ctx *c, const char *const *sets, vec3 dir, double roll, mat4 *inv, uint8_t *rgba, float *rgb)
+{
+    if (tr_render(c, "scenes/cumulus.scene", sets))
+        fail_msg("%s", c->err);
+    cu_scene *s = scene_with(sets);
+    float view[16], proj[16];
+    rolled_camera(s, dir, roll, 60, GW, GH, view, proj, inv);
+    unsigned fbo;
+    int w, h;
+    c->be->frame(c->disp, &fbo, &w, &h);
+    cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = c->linear, .view = view, .projection = proj};
+    cu_error e;
+    if (cu_render(c->r, &f, &e))
+        fail_msg("%s", e.msg);
+    if (rgb)
+        tr_read_rgbf(c, rgb);
+    else
+        tr_read_rgba8(c, rgba);
+    cu_scene_free(s);
+}
+
+/* quality.sky_grid: the sky worked out at the corners of cells and interpolated, against the same frame with the sky
+ * at every pixel (sky_grid 0), in display colours and in radiance, on host cameras toward the sun, beside it, rolled,
+ * up and down, at a sun on the horizon and a high one, a clear and a hazy sky and a constant one. The frame is 400 x
+ * 300 at 60 degrees: a 16-pixel cell spans 3.2 degrees, coarser than 800 x 480 at the same angle. Where the sun's disk
+ * is, the pixels must be the exact ones (pass_sky.c draws them a pixel at a time); elsewhere within the bounds below
+ * (measured, with little room). */
+static void test_sky_grid(void **st)
+{
+    (void)st;
+    static const int grids[] = {8, 16, 32, 64};
+    /* measured (llvmpipe): 1, 1, 3, 4 levels and 0.010, 0.042, 0.092, 0.139 relative in radiance (a dim channel) */
+    static const int most8[] = {1, 1, 3, 4};
+    static const double most_rel[] = {0.013, 0.05, 0.11, 0.17};
+    static const char *const skies[][3] = {{"sun.elevation=3", "sun.turbidity=2", "sky.model=preetham"},
+                                           {"sun.elevation=30", "sun.turbidity=8", "sky.model=preetham"},
+                                           {"sun.elevation=20", "sun.turbidity=2", "sky.model=constant"}};
+    uint8_t *ref8 = malloc(4 * GW * GH), *got8 = malloc(4 * GW * GH);
+    float *ref = malloc(sizeof(float) * 3 * GW * GH), *got = malloc(sizeof(float) * 3 * GW * GH);
+    assert_true(ref8 && got8 && ref && got);
+    for (int linear = 0; linear < 2; linear++) {
+        tr_ctx c;
+        if (tr_open(&c, &cu_display_egl, GW, GH, linear))
+            fail_msg("%s", c.err);
+        int worst8[4] = {0, 0, 0, 0}, disk = 0;
+        double worst[4] = {0, 0, 0, 0};
+        for (int k = 0; k < 3; k++) {
+            const char *sets[] = {"cloud.density=0", skies[k][0], skies[k][1], skies[k][2], "quality.sky_grid=0",
+                                  NULL};
+            cu_scene *s = scene_with(sets);
+            cu_sky sky;
+            cu_sky_compute(&sky, s);
+            cu_scene_free(s);
+            vec3 sun = sky.sun_dir, level = v3_norm(v3(sun.x, 0, sun.z)), side = v3_cross(level, v3(0, 1, 0));
+            /* at the sun, 25 degrees beside it (near the frame's edge), level toward it rolled 90, rolled 30 with
+             * the sun high in the frame, straight up, and down and away from it */
+            struct { vec3 dir; double roll; } views[] = {
+                {sun, 0}, {v3_add(sun, v3_scale(side, tan(25 * CU_PI / 180))), 0}, {level, 90},
+                {v3_add(sun, v3(0, -0.3, 0)), 30}, {v3(0, 1, 0), 0}, {v3_add(v3_scale(level, -1), v3(0, -0.6, 0)), 0}};
+            for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+                mat4 inv;
+                sets[4] = "quality.sky_grid=0";
+                host_frame(&c, sets, views[v].dir, views[v].roll, &inv, ref8, linear ? ref : NULL);
+                for (int g = 0; g < 4; g++) {
+                    char grid[40];
+                    snprintf(grid, sizeof grid, "quality.sky_grid=%d", grids[g]);
+                    sets[4] = grid;
+                    host_frame(&c, sets, views[v].dir, views[v].roll, &inv, got8, linear ? got : NULL);
+                    for (int y = 0; y < GH; y++)
+                        for (int x = 0; x < GW; x++) {
+                            int i = y * GW + x;
+                            if (v3_dot(pixel_dir(inv, GW, GH, x, y), sun) > cos(0.3 * CU_PI / 180)) {
+                                /* the disk (0.2666 degrees) and a little about it: exact */
+                                disk++;
+                                for (int ch = 0; ch < 3; ch++)
+                                    if (linear ? got[3 * i + ch] != ref[3 * i + ch]
+                                               : got8[4 * i + ch] != ref8[4 * i + ch])
+                                        fail_msg("sky %d view %zu grid %d: pixel (%d, %d) at the sun differs", k, v,
+                                                 grids[g], x, y);
+                                continue;
+                            }
+                            for (int ch = 0; ch < 3; ch++) {
+                                if (linear) {
+                                    assert_false(isnan(got[3 * i + ch]) || isinf(got[3 * i + ch]));
+                                    double r = fabs(got[3 * i + ch] - ref[3 * i + ch]) / fmax(ref[3 * i + ch], 1e-6);
+                                    worst[g] = fmax(worst[g], r);
+                                } else {
+                                    int d = abs((int)got8[4 * i + ch] - ref8[4 * i + ch]);
+                                    if (d > 1 && getenv("CUMULO_TEST_DEBUG"))
+                                        printf("sky %d view %zu grid %d: (%d, %d) %d levels\n", k, v, grids[g], x, y,
+                                               d);
+                                    worst8[g] = d > worst8[g] ? d : worst8[g];
+                                }
+                            }
+                        }
+                }
+            }
+        }
+        for (int g = 0; g < 4; g++) {
+            printf("sky_grid %d, %s: largest difference from the sky at every pixel %s %.4f\n", grids[g],
+                   linear ? "radiance" : "tone-mapped", linear ? "relative" : "levels",
+                   linear ? worst[g] : worst8[g]);
+            if (linear)
+                assert_true(worst[g] <= most_rel[g]);
+            else
+                assert_true(worst8[g] <= most8[g]);
+        }
+        assert_true(disk > 100); /* the sun was in the frames */
+        tr_close(&c);
+    }
+    free(ref8);
+    free(got8);
+    free(ref);
+    free(got);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_sky_is_preetham),
-                                       cmocka_unit_test(test_sky_and_ground_in_rows)};
+                                       cmocka_unit_test(test_sky_and_ground_in_rows),
+                                       cmocka_unit_test(test_sky_grid)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
