@@ -2,9 +2,9 @@
 // shaders_gles/sky.vert: one triangle covering the viewport, carrying each corner's points on the near and far planes
 // (homogeneous, through u_inv_viewproj): they are linear in the screen, so the sky's fragments get them interpolated
 // exactly and divide, instead of two matrix products a pixel. With SKY_VERTEX (quality.sky_grid): a grid of cells
-// over rows of the viewport instead, the sky worked out at their corners and interpolated between them: it varies
-// slowly across the screen, and the fragments then do nothing but write it (pass_sky.c draws the sun's disk, the
-// horizon and the ground's shadows a pixel at a time).
+// over rows of the Perez sky instead, the sky worked out at their corners and interpolated between them: it varies
+// slowly across the screen, and the fragments only tone-map it (pass_sky.c draws the sun's disk and the aureole
+// about it, the horizon and the ground a pixel at a time).
 #ifndef SKY_VERTEX
 #define SKY_VERTEX 0
 #endif
@@ -25,15 +25,9 @@ void main()
     vec2 px = min(u_grid_box.xy + vec2(at) * u_grid_cell, u_grid_box.zw);
     vec2 p = px / u_grid_size * 2.0 - 1.0;
     vec4 n = u_inv_viewproj * vec4(p, -1.0, 1.0), f = u_inv_viewproj * vec4(p, 1.0, 1.0);
-    vec3 dir = normalize(f.xyz / f.w - n.xyz / n.w);
-#if SKY_CONSTANT
-    vec3 L = u_sky_color;
-#elif SKY_PART == 1
-    vec3 L = perez_sky(dir);
-#else
-    vec3 L = u_ground; // rows of ground without shadow maps
-#endif
-    v_sky = exposed(L); // linear: the display's curve at every pixel, as the sky under the clouds gets it later
+    // rows of the Perez sky alone (pass_sky.c): linear, the display's curve at every pixel, as the sky drawn under
+    // the clouds gets it later
+    v_sky = exposed(perez_sky(normalize(f.xyz / f.w - n.xyz / n.w)));
     gl_Position = vec4(p, 0.0, 1.0);
 }
 #else

@@ -21,7 +21,7 @@ enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
 enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
 /* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS); and by
  * where the sky is worked out: at every pixel, or at the corners of quality.sky_grid's cells (sky.vert SKY_VERTEX:
- * the sky alone, the ground without shadow maps, a constant sky; the sun's disk then drawn over a pixel at a time). */
+ * rows of the Perez sky alone; the sun's disk then drawn over a pixel at a time). */
 typedef struct cu_pass_sky {
     /* [kind][CU_SKY_BOTH][0][0] made at once, the others when first drawn */
     GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][2];

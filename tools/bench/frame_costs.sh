@@ -9,7 +9,8 @@
 # and caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
 # closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as
 # before the bands; "low, sun_map_frames = 8" spreads them over 8 frames. Rounds interleaved (every case once a
-# round), medians over rounds, ratios to the cloud view in the same run. Prints a Markdown table.
+# round), medians over rounds, ratios to the cloud view in the same run. The row "sky_grid = 0" draws the sky at
+# every pixel, as before the grid. Prints a Markdown table.
 # Usage: tools/bench/frame_costs.sh [ROUNDS] [SIZE]; LP_NUM_THREADS as in the environment.
 set -eu
 ROUNDS=${1:-3}
@@ -19,13 +20,14 @@ S=scenes/cumulus.scene
 T=${TMPDIR:-/tmp}/cumulo-fc-bench.$$
 mkdir -p "$T"
 trap 'rm -rf "$T"' EXIT
-CONFIGS="high medium low low8 whole diffusion uniform"
+CONFIGS="high medium exact low low8 whole diffusion uniform"
 sets() {
   case $1 in
     uniform) echo "--set quality.method=uniform --set ms.mode=octaves --set quality.uniform_steps=16 \
 --set quality.uniform_sun_steps=4 --set quality.noise_baked=on" ;;
     diffusion) echo "--set quality.preset=medium --set ms.mode=diffusion" ;;
     whole) echo "--set quality.preset=medium --set quality.sun_map_frames=1" ;;
+    exact) echo "--set quality.preset=medium --set quality.sky_grid=0" ;;
     low8) echo "--set quality.preset=low --set quality.sun_map_frames=8" ;;
     *) echo "--set quality.preset=$1" ;;
   esac
@@ -58,6 +60,7 @@ for c in $CONFIGS; do
   [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
   [ "$c" = diffusion ] && label="medium, ms.mode = diffusion"
   [ "$c" = whole ] && label="medium, sun_map_frames = 1"
+  [ "$c" = exact ] && label="medium, sky_grid = 0"
   [ "$c" = low8 ] && label="low, sun_map_frames = 8"
   printf '| %s | %s | %s | %.2f | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" \
     "$(echo "$b $a" | awk '{print $1/$2}')" "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$f" \
