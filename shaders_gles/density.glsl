@@ -219,7 +219,9 @@ int next_interval(int k, out float a, out float b, out int merged)
 // Optical depth through the in-cloud interval [a, b] of the ray ro + t dir: n trapezoids on the knots above (uniform
 // core; boundary ramps if `ramps`), the end samples a hair inside (as in cloud.frag). Also returns the cumulative
 // optical depth at 1/4, 1/2, 3/4 and 1 of the interval, each a knot of its own (a segment holding a quarter point
-// is split there), so the opacity map stores sampled values, not interpolations inside a noisy segment.
+// is split there), so the opacity map stores sampled values, not interpolations inside a noisy segment. One loop
+// over the knots and the quarter points in order, one density sample a trip: a loop nested in it for the quarter
+// points cost a sample every knot on llvmpipe, which runs a loop's first trip whether or not any pixel takes it.
 float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, out vec4 quarters)
 {
     float len = b - a;
@@ -227,27 +229,22 @@ float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps,
     knots kn = make_knots(a, len, nudge, n, 1.0, ramps);
     int m = knot_count(kn);
     float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge), tau = 0.0;
-    int j = 0;  // next quarter point
+    int i = 1, j = 0; // the next knot, the next quarter point
+    float t_knot = m == 1 ? b : knot_t(kn, 1);
     quarters = vec4(0.0);
-    for (int i = 1; i <= m; i++) {
-        float t = i == m ? b : knot_t(kn, i);
-        for (int s = 0; s < 3; s++) { // quarter points strictly inside this segment
-            float q = a + 0.25 * float(j + 1) * len;
-            if (j >= 3 || q >= t - 1e-4 * len)
-                break;
-            float kq = extinction(ro + dir * q, q);
-            tau += (q - t_prev) * 0.5 * (ke_prev + kq);
-            quarters[j] = tau;
-            j++;
-            t_prev = q;
-            ke_prev = kq;
-        }
-        float ts = i == m ? b - nudge : t;
+    for (int step = 0; step < m + 3 && i <= m; step++) {
+        float q = a + 0.25 * float(j + 1) * len;
+        bool inside = j < 3 && q < t_knot - 1e-4 * len; // a quarter point strictly inside this segment: first
+        float t = inside ? q : t_knot, ts = inside || i < m ? t : b - nudge;
         float ke = extinction(ro + dir * ts, ts);
         tau += (t - t_prev) * 0.5 * (ke_prev + ke);
-        if (j < 3 && abs(a + 0.25 * float(j + 1) * len - t) < 1e-4 * len) { // a knot on the quarter point
-            quarters[j] = tau;
+        if (inside || (j < 3 && abs(q - t) < 1e-4 * len)) { // ... or a knot on it
+            quarters[min(j, 3)] = tau;
             j++;
+        }
+        if (!inside) {
+            i++;
+            t_knot = i >= m ? b : knot_t(kn, i);
         }
         t_prev = t;
         ke_prev = ke;
