@@ -154,19 +154,31 @@ int knot_count(knots k)
     return k.nc + 2 * k.nr;
 }
 
-float knot_t(knots k, int i)
+// Knot i, the core's at fraction f of its length (the boundary ramps' knots need none).
+float knot_at(knots k, int i, float f)
 {
     int n = k.nc + 2 * k.nr;
     if (k.nr > 0 && i <= k.nr)
         return k.a + k.rl * float(i) / float(k.nr);
     if (k.nr > 0 && i >= n - k.nr)
         return k.a + k.len - k.rl * float(n - i) / float(k.nr);
-    float j = float(i - k.nr), core = k.len - 2.0 * k.rl;
+    float core = k.len - 2.0 * k.rl;
+    return k.a + k.rl + core * f;
+}
+
+float knot_t(knots k, int i)
+{
     // (r^j - 1) / (r^nc - 1), written as r^(j - nc) (1 - r^-j) / (1 - r^-nc): r^nc overflows fp32 for 48 segments
     // per chord over several merged chords (1.6^192), which made NaN
-    float lr = log(max(k.r, 1.0)), nc = float(k.nc);
-    float f = k.r > 1.0001 ? exp((j - nc) * lr) * (1.0 - exp(-j * lr)) / (1.0 - exp(-nc * lr)) : j / nc;
-    return k.a + k.rl + core * f;
+    float j = float(i - k.nr), lr = log(max(k.r, 1.0)), nc = float(k.nc);
+    return knot_at(k, i, k.r > 1.0001 ? exp((j - nc) * lr) * (1.0 - exp(-j * lr)) / (1.0 - exp(-nc * lr)) : j / nc);
+}
+
+// The same for a uniform core (r = 1): without the geometric progression's three exp and a log, which llvmpipe
+// works out whatever r is (it runs both sides of a choice).
+float knot_t_uniform(knots k, int i)
+{
+    return knot_at(k, i, float(i - k.nr) / float(k.nc));
 }
 
 // Intersects the ray ro + t dir (dir unit) with every ellipsoid and keeps the chords with t1 > 0, clipped to t >= 0
@@ -230,7 +242,7 @@ float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps,
     int m = knot_count(kn);
     float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge), tau = 0.0;
     int i = 1, j = 0; // the next knot, the next quarter point
-    float t_knot = m == 1 ? b : knot_t(kn, 1);
+    float t_knot = m == 1 ? b : knot_t_uniform(kn, 1);
     quarters = vec4(0.0);
     for (int step = 0; step < m + 3 && i <= m; step++) {
         float q = a + 0.25 * float(j + 1) * len;
@@ -244,7 +256,7 @@ float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps,
         }
         if (!inside) {
             i++;
-            t_knot = i >= m ? b : knot_t(kn, i);
+            t_knot = i >= m ? b : knot_t_uniform(kn, i);
         }
         t_prev = t;
         ke_prev = ke;

@@ -59,7 +59,7 @@ void main()
             float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
             for (int i = 1; i <= m; i++) {
                 bool last = i == m;
-                float t = last ? b : knot_t(kn, i);
+                float t = last ? b : knot_t_uniform(kn, i);
                 float ts = last ? b - nudge : t;
                 float ke = extinction(ro + dir * ts, ts);
                 // int over [t_prev, t] of (k_e linear) * cos or sin(om x), x = z - z0, about the segment's middle:

@@ -57,7 +57,7 @@ void main()
         float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge);
         for (int i = 1; i <= m; i++) {
             bool last = i == m;
-            float t = last ? b : knot_t(kn, i);
+            float t = last ? b : knot_t_uniform(kn, i);
             float ts = last ? b - nudge : t;
             float ke = extinction(ro + dir * ts, ts);
             float tau_new = tau + (t - t_prev) * 0.5 * (ke_prev + ke);
