@@ -4,8 +4,10 @@
 // the sun disk, and a Lambertian ground below the horizon. Output: linear RGB radiance (kcd/m^2 units); with
 // SKY_TONEMAP (a frame with no cloud in view) the display's colour straight away, as the tone map would make it.
 #include "sky.glsl"
-#if SKY_VERTEX
+#if SKY_VERTEX == 1
 in vec3 v_sky;                 // the sky's exposed radiance at this pixel, interpolated from the grid's corners
+#elif SKY_VERTEX == 2
+flat in vec3 v_flat;           // the colour of every pixel, the display's curve applied (sky.vert)
 #else
 in vec4 v_near, v_far;         // the pixel's points on the near and far planes, homogeneous (sky.vert)
 #endif
@@ -85,7 +87,9 @@ vec3 sky_above(vec3 dir)
 
 void main()
 {
-#if SKY_VERTEX
+#if SKY_VERTEX == 2
+    o_color = vec4(v_flat, 1.0); // tone-mapped already where SKY_TONEMAP; never with SKY_COMPOSITE (pass_sky.c)
+#elif SKY_VERTEX == 1
     // The grid's cells hold no sun disk, no horizon and no ground shadow (pass_sky.c draws those a pixel at a time).
     o_color = vec4(v_sky, 1.0);
 #else
@@ -104,11 +108,11 @@ void main()
 #endif
     o_color = vec4(exposed(L), 1.0);
 #endif
-#if SKY_COMPOSITE
+#if SKY_COMPOSITE && SKY_VERTEX != 2
     vec4 c = clouds_at(gl_FragCoord.xy); // at a factor of 1 the weights are exactly 1 and 0: the pixel's texel
     o_color.rgb = c.rgb + (1.0 - c.a) * o_color.rgb;
 #endif
-#if SKY_TONEMAP
+#if SKY_TONEMAP && SKY_VERTEX != 2
     o_color = vec4(tone_curve(o_color.rgb), 1.0);
 #endif
 }

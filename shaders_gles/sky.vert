@@ -4,11 +4,14 @@
 // exactly and divide, instead of two matrix products a pixel. With SKY_VERTEX (quality.sky_grid): a grid of cells
 // over rows of the Perez sky instead, the sky worked out at their corners and interpolated between them: it varies
 // slowly across the screen, and the fragments only tone-map it (pass_sky.c draws the sun's disk and the aureole
-// about it, the horizon and the ground a pixel at a time).
+// about it, the horizon and the ground a pixel at a time). With SKY_VERTEX 2: a colour the same at every pixel (the
+// ground where no shadow map can reach, a constant sky) worked out once a corner and passed on flat, the display's
+// curve included: the curve alone is most of what a pixel of it cost on llvmpipe (pass_sky.c draws the sun's disk
+// over a constant sky a pixel at a time).
 #ifndef SKY_VERTEX
 #define SKY_VERTEX 0
 #endif
-#if SKY_VERTEX
+#if SKY_VERTEX == 1
 #include "sky.glsl"
 uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
 uniform vec4 u_grid_box;       // the grid's first corner and its last (pixels)
@@ -28,6 +31,25 @@ void main()
     // rows of the Perez sky alone (pass_sky.c): linear, the display's curve at every pixel, as the sky drawn under
     // the clouds gets it later
     v_sky = exposed(perez_sky(normalize(f.xyz / f.w - n.xyz / n.w)));
+    gl_Position = vec4(p, 0.0, 1.0);
+}
+#elif SKY_VERTEX == 2
+#include "sky.glsl"
+#if SKY_TONEMAP
+#include "tonecurve.glsl"
+#endif
+flat out vec3 v_flat;
+void main()
+{
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;
+#if SKY_CONSTANT
+    v_flat = exposed(u_sky_color);
+#else
+    v_flat = exposed(u_ground); // sky.frag's ground() where no map is read
+#endif
+#if SKY_TONEMAP
+    v_flat = tone_curve(v_flat);
+#endif
     gl_Position = vec4(p, 0.0, 1.0);
 }
 #else

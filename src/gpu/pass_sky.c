@@ -20,20 +20,20 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
 }
 
-/* Makes the program of a kind, part, count of ground maps and grid (0, 1), once. */
-static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, int grid, cu_error *err)
+/* Makes the program of a kind, part, count of ground maps and shape (CU_SKY_PIXEL...), once. */
+static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, int shape, cu_error *err)
 {
     static const char *const kinds[CU_SKY_KINDS] = {"", "#define SKY_TONEMAP 1\n",
                                                     "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n"};
-    if (p->prog[kind][part][maps][grid])
+    if (p->prog[kind][part][maps][shape])
         return 0;
     char defs[2200];
     if (snprintf(defs, sizeof defs, "%s%s#define SKY_PART %d\n#define GROUND_MAPS %d\n#define SKY_VERTEX %d\n",
-                 p->defines, kinds[kind], part, maps, grid) >= (int)sizeof defs)
+                 p->defines, kinds[kind], part, maps, shape) >= (int)sizeof defs)
         return cu_fail(err, "sky: shader defines too long");
-    if (!(p->prog[kind][part][maps][grid] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
+    if (!(p->prog[kind][part][maps][shape] = cu_gl_program(gl, "sky.vert", "sky.frag", defs, err)))
         return 1;
-    locs_get(gl, p->prog[kind][part][maps][grid], &p->loc[kind][part][maps][grid]);
+    locs_get(gl, p->prog[kind][part][maps][shape], &p->loc[kind][part][maps][shape]);
     return 0;
 }
 
@@ -45,7 +45,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
         (int)sizeof p->defines)
         return cu_fail(err, "sky: shader defines too long");
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
-        if (program(p, gl, kind, CU_SKY_BOTH, 0, 0, err))
+        if (program(p, gl, kind, CU_SKY_BOTH, 0, CU_SKY_PIXEL, err))
             return 1;
     gl->GenTextures(1, &p->tables);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
@@ -77,9 +77,9 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
     for (int kind = 0; kind < CU_SKY_KINDS; kind++)
         for (int part = 0; part < CU_SKY_PARTS; part++)
             for (int maps = 0; maps <= CU_GROUND_MAPS; maps++)
-                for (int grid = 0; grid < 2; grid++)
-                    if (p->prog[kind][part][maps][grid])
-                        gl->DeleteProgram(p->prog[kind][part][maps][grid]);
+                for (int shape = 0; shape < CU_SKY_SHAPES; shape++)
+                    if (p->prog[kind][part][maps][shape])
+                        gl->DeleteProgram(p->prog[kind][part][maps][shape]);
     if (p->tables)
         gl->DeleteTextures(1, &p->tables);
     memset(p, 0, sizeof *p);
@@ -195,29 +195,35 @@ static void sun_box(const float *m, vec3 sun, int w, int h, int grid, int box[4]
         }
 }
 
+static int over_sun(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, int maps, int factor,
+                    const int box[4], const int sun[4], cu_error *err);
+
 /* Pixels box (x0, y0, x1, y1, half-open) with the program of kind k, part and maps: at every pixel (sun NULL, or
- * quality.sky_grid 0, or anything but rows of the Perez sky alone), else at the corners of quality.sky_grid's cells,
- * and then the pixels of sun (sun_box) inside the box at every pixel again. */
+ * quality.sky_grid 0, or anything but rows of the Perez sky alone), or at the corners of quality.sky_grid's cells, or
+ * once for a colour that is the same at every pixel of it (the ground where no map is read, a constant sky), and
+ * then, after the grid or a constant sky, the pixels of sun (sun_box) inside the box at every pixel again. */
 static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, int maps, int factor, const int box[4],
                  const int sun[4], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     if (box[2] <= box[0] || box[3] <= box[1])
         return 0;
-    int low = part == SKY_LOW;
+    int low = part == SKY_LOW, constant = ctx->scene->sky_model == CU_SKY_CONSTANT;
     part = low ? CU_SKY_ABOVE : part;
-    /* only the Perez sky: a constant colour (the ground, a constant sky) costs less a pixel at a time than the
-     * grid's triangles on llvmpipe (1.6 against 2.5 ms at 800 x 480) */
+    /* the grid only for the Perez sky: a constant colour costs less drawn flat than through the grid's triangles on
+     * llvmpipe; flat, not with a cloud image over it (that blends and tone-maps a pixel at a time anyway) */
     int cell = ctx->scene->sky_grid, high = low && cell > 4 ? cell / 4 : cell;
-    int grid = sun && cell > 0 && part == CU_SKY_ABOVE && ctx->scene->sky_model != CU_SKY_CONSTANT;
-    if (program(pass, gl, k, part, maps, grid, err))
+    int shape = !sun ? CU_SKY_PIXEL
+              : k != CU_SKY_OVER && (constant || (part == CU_SKY_BELOW && maps == 0)) ? CU_SKY_FLAT
+              : cell > 0 && part == CU_SKY_ABOVE && !constant ? CU_SKY_GRID : CU_SKY_PIXEL;
+    if (program(pass, gl, k, part, maps, shape, err))
         return 1;
-    const cu_sky_locs *l = &pass->loc[k][part][maps][grid];
-    uniforms(pass, ctx, pass->prog[k][part][maps][grid], l, factor);
+    const cu_sky_locs *l = &pass->loc[k][part][maps][shape];
+    uniforms(pass, ctx, pass->prog[k][part][maps][shape], l, factor);
     gl->Scissor(box[0], box[1], box[2] - box[0], box[3] - box[1]);
-    if (!grid) {
+    if (shape != CU_SKY_GRID) {
         gl->DrawArrays(GL_TRIANGLES, 0, 3);
-        return 0;
+        return shape == CU_SKY_FLAT && constant ? over_sun(pass, ctx, k, part, maps, factor, box, sun, err) : 0;
     }
     /* the cells laid from the viewport's corner, whatever the box: every piece and every kind of pass (a frame's
      * sky drawn under the clouds, or straight to the output) then interpolates between the same corners */
@@ -228,6 +234,13 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
     gl->Uniform2f(l->grid_size, (float)w, (float)h);
     gl->Uniform1i(l->grid_cols, cols);
     gl->DrawArrays(GL_TRIANGLE_STRIP, 0, (2 * cols + 4) * rows - 2);
+    return over_sun(pass, ctx, k, part, maps, factor, box, sun, err);
+}
+
+/* The pixels of sun inside box again, each worked out (piece with no sun box: CU_SKY_PIXEL). */
+static int over_sun(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, int maps, int factor,
+                    const int box[4], const int sun[4], cu_error *err)
+{
     const int disk[4] = {sun[0] > box[0] ? sun[0] : box[0], sun[1] > box[1] ? sun[1] : box[1],
                          sun[2] < box[2] ? sun[2] : box[2], sun[3] < box[3] ? sun[3] : box[3]};
     return piece(pass, ctx, k, part, maps, factor, disk, NULL, err);
@@ -306,7 +319,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     const float *m = ctx->camera.inv_rot;
     int rc = 0, part = split ? rows_part(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH, sun[4] = {0, 0, 0, 0};
     int shade[4] = {0, 0, 0, 0}, over = kind == CU_SKY_OVER;
-    if (ctx->scene->sky_grid > 0)
+    if (ctx->scene->sky_grid > 0 || !split) /* the grid's cells or a flat constant sky need the sun drawn over */
         sun_box(m, ctx->sun_dir, w, h, ctx->scene->sky_grid, sun);
     if (maps > 0)
         shadow_box(ctx, maps, w, h, shade);

@@ -20,12 +20,14 @@ enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
  * A software rasteriser runs both sides of a shader's branch on every pixel; a program without the branch does not. */
 enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
 /* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS); and by
- * where the sky is worked out: at every pixel, or at the corners of quality.sky_grid's cells (sky.vert SKY_VERTEX:
- * rows of the Perez sky alone; the sun's disk then drawn over a pixel at a time). */
+ * where the colour is worked out (sky.vert's SKY_VERTEX): at every pixel; at the corners of quality.sky_grid's cells
+ * (rows of the Perez sky alone; the sun's disk then drawn over a pixel at a time); once, for a colour the same at every
+ * pixel (the ground where no shadow map reaches, a constant sky with its sun's disk drawn over). */
+enum { CU_SKY_PIXEL, CU_SKY_GRID, CU_SKY_FLAT, CU_SKY_SHAPES };
 typedef struct cu_pass_sky {
     /* [kind][CU_SKY_BOTH][0][0] made at once, the others when first drawn */
-    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][2];
-    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][2];
+    GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][CU_SKY_SHAPES];
+    cu_sky_locs loc[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][CU_SKY_SHAPES];
     char defines[2048];         /* the scene's, for the programs made later */
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */

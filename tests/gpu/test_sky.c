@@ -5,7 +5,8 @@
  * shader's lookup reproduce the model. And the rows: the pass draws rows of sky alone, of ground alone and rows
  * holding the horizon with programs of their own (pass_sky.c); host cameras rolled and pitched every way put each
  * pixel above the horizon on the sky and each below on the ground, in radiance and tone-mapped. And the grid
- * (quality.sky_grid): the sky interpolated from the corners of cells, against the sky at every pixel. */
+ * (quality.sky_grid): the sky interpolated from the corners of cells, against the sky at every pixel. And a constant
+ * sky drawn flat with the sun's disk over it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -356,10 +357,72 @@ static void test_sky_grid(void **st)
     free(got);
 }
 
+/* A constant sky (sky.model constant): one colour from every direction, the ground's place too, drawn flat (pass_sky.c
+ * CU_SKY_FLAT, worked out once) with the sun's disk drawn over it a pixel at a time. Every pixel farther than 0.3
+ * degrees from the sun holds sky.color exactly (radiance) or one colour (display); every pixel within 0.2 degrees
+ * holds the disk (0.2666 degrees: radiance far above the sky's, white on the display). At the sun, beside it, and
+ * down and away, with the grid on and off. */
+static void test_constant_sky_and_sun(void **st)
+{
+    (void)st;
+    uint8_t *px8 = malloc(4 * GW * GH);
+    float *px = malloc(sizeof(float) * 3 * GW * GH);
+    assert_true(px8 && px);
+    for (int linear = 0; linear < 2; linear++) {
+        tr_ctx c;
+        if (tr_open(&c, &cu_display_egl, GW, GH, linear))
+            fail_msg("%s", c.err);
+        const char *sets[] = {"cloud.density=0", "sun.elevation=20", "sky.model=constant", "sky.color=6 7 9",
+                              "quality.sky_grid=0", NULL};
+        cu_scene *s = scene_with(sets);
+        cu_sky sky;
+        cu_sky_compute(&sky, s);
+        cu_scene_free(s);
+        vec3 sun = sky.sun_dir, level = v3_norm(v3(sun.x, 0, sun.z)), side = v3_cross(level, v3(0, 1, 0));
+        vec3 views[] = {sun, v3_add(sun, v3_scale(side, tan(10 * CU_PI / 180))),
+                        v3_add(v3_scale(level, -1), v3(0, -0.6, 0))};
+        int disk = 0, sky_px = 0;
+        for (int g = 0; g < 2; g++) {
+            sets[4] = g ? "quality.sky_grid=16" : "quality.sky_grid=0";
+            for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+                mat4 inv;
+                host_frame(&c, sets, views[v], 0, &inv, px8, linear ? px : NULL);
+                int base = -1; /* the display colour of the sky, from the first pixel away from the sun */
+                for (int y = 0; y < GH; y++)
+                    for (int x = 0; x < GW; x++) {
+                        int i = y * GW + x;
+                        double cosang = v3_dot(pixel_dir(inv, GW, GH, x, y), sun);
+                        if (cosang > cos(0.2 * CU_PI / 180)) {
+                            disk++;
+                            for (int ch = 0; ch < 3; ch++)
+                                if (linear ? !(px[3 * i + ch] > 1000.0f) : px8[4 * i + ch] != 255)
+                                    fail_msg("view %zu grid %d: pixel (%d, %d) in the sun's disk holds no sun", v,
+                                             g, x, y);
+                        } else if (cosang < cos(0.3 * CU_PI / 180)) {
+                            sky_px++;
+                            int rgb = px8[4 * i] << 16 | px8[4 * i + 1] << 8 | px8[4 * i + 2];
+                            base = base < 0 ? rgb : base;
+                            if (linear ? px[3 * i] != 6.0f || px[3 * i + 1] != 7.0f || px[3 * i + 2] != 9.0f
+                                       : rgb != base || rgb == 0xffffff)
+                                fail_msg("view %zu grid %d: pixel (%d, %d) is not the constant sky", v, g, x, y);
+                        }
+                    }
+            }
+        }
+        printf("%s: %d pixels of the sun's disk, %d of the constant sky\n", linear ? "radiance" : "display", disk,
+               sky_px);
+        assert_true(disk >= 8 && sky_px > GW * GH); /* measured 14 and 719980 (of 6 frames) */
+        tr_close(&c);
+    }
+    free(px8);
+    free(px);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_sky_is_preetham),
                                        cmocka_unit_test(test_sky_and_ground_in_rows),
-                                       cmocka_unit_test(test_sky_grid)};
+                                       cmocka_unit_test(test_sky_grid),
+                                       cmocka_unit_test(test_constant_sky_and_sun)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
