@@ -55,7 +55,7 @@ static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, int urgen
     sl->maps_sun = ctx->sky->sun_dir;
     sl->maps_valid = 1; /* what cu_frame_bind_cloud lights it with, from now */
     double f = bind_mature(r, sl, sl->maps_sun);
-    cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, &sl->sun);
+    cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, NULL, &sl->sun);
     ctx->sun = sl->sun;
     cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, &sl->slab, 1);
     if (!sl->zenith_valid)
@@ -101,10 +101,9 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
     double f = bind_mature(r, sl, sl->next_sun);
     int size = ctx->sun_size, y0 = size * sl->next_band / bands, y1 = size * (sl->next_band + 1) / bands;
     int last = ++sl->next_band == bands;
-    gl->Enable(GL_SCISSOR_TEST);
-    gl->Scissor(0, y0, 16384, y1 - y0); /* every tile of the row band (the sun map's tiles lie side by side) */
     cu_slab_maps slab = sl->slab;
-    cu_pass_sun_update(&r->pass_sun, ctx, &sl->next_sun_map, &sl->next_sun_maps);
+    const int rows[2] = {y0, y1}; /* every tile of the row band (the sun map's tiles lie side by side) */
+    cu_pass_sun_update(&r->pass_sun, ctx, &sl->next_sun_map, rows, &sl->next_sun_maps); /* scissor left on them */
     ctx->sun = sl->next_sun_maps;
     cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->next_slab_map, &slab, last);
     if (sl->next_zenith)

@@ -11,7 +11,8 @@
     X(BindTexture, BINDTEXTURE) X(BindVertexArray, BINDVERTEXARRAY) X(BlendEquation, BLENDEQUATION) \
     X(BlendEquationSeparate, BLENDEQUATIONSEPARATE) X(BlendFunc, BLENDFUNC) X(BlendFuncSeparate, BLENDFUNCSEPARATE) \
     X(BufferData, BUFFERDATA) X(BufferSubData, BUFFERSUBDATA) \
-    X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS) X(Clear, CLEAR) X(ClearColor, CLEARCOLOR) \
+    X(CheckFramebufferStatus, CHECKFRAMEBUFFERSTATUS) X(Clear, CLEAR) X(ClearBufferfv, CLEARBUFFERFV) \
+    X(ClearColor, CLEARCOLOR) \
     X(ClearDepthf, CLEARDEPTHF) X(ClearStencil, CLEARSTENCIL) X(ColorMask, COLORMASK) X(CompileShader, COMPILESHADER) \
     X(CreateProgram, CREATEPROGRAM) X(CreateShader, CREATESHADER) X(DeleteBuffers, DELETEBUFFERS) \
     X(DeleteFramebuffers, DELETEFRAMEBUFFERS) X(DeleteProgram, DELETEPROGRAM) X(DeleteQueries, DELETEQUERIES) \

@@ -98,7 +98,43 @@ static void draw_front(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_t
     gl->BindVertexArray(0);
 }
 
-void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, cu_sun_maps *out)
+/* The rows of every tile (the scissor a band of the maps is drawn with), or all of them. */
+static void band_scissor(const cu_gl *gl, const int rows[2])
+{
+    if (!rows) {
+        gl->Disable(GL_SCISSOR_TEST);
+        return;
+    }
+    gl->Enable(GL_SCISSOR_TEST);
+    gl->Scissor(0, rows[0], 16384, rows[1] - rows[0]);
+}
+
+/* The peeled map's tiles, only where the cloud's shadow can fall (cu_sun_map_texels): every texel of the rows first
+ * set to what sun_opacity.frag writes where its ray meets no interval, then each tile drawn inside the box. A texel
+ * outside costs a cast through every ellipsoid and the integration's first trip (llvmpipe runs it whether or not a
+ * pixel takes it); a cumulus from a high sun leaves half the square empty. */
+static void draw_peel(const cu_gpu_scene *ctx, int tiles, const int rows[2])
+{
+    const cu_gl *gl = ctx->gl;
+    static const GLfloat no_interval[4] = {1e30f, 1e30f, 0.0f, 0.0f}, no_tau[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int size = ctx->sun_size, y0 = rows ? rows[0] : 0, y1 = rows ? rows[1] : size, box[4];
+    cu_sun_map_texels(ctx->cloud, ctx->sun_right, ctx->sun_up, ctx->sun_R, size, box);
+    band_scissor(gl, rows);
+    gl->ClearBufferfv(GL_COLOR, 0, no_interval);
+    gl->ClearBufferfv(GL_COLOR, 1, no_tau);
+    int b0 = box[1] > y0 ? box[1] : y0, b1 = box[3] < y1 ? box[3] : y1;
+    if (b1 > b0 && box[2] > box[0]) {
+        gl->Enable(GL_SCISSOR_TEST);
+        for (int j = 0; j < tiles; j++) {
+            gl->Scissor(j * size + box[0], b0, box[2] - box[0], b1 - b0);
+            gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        }
+    }
+    band_scissor(gl, rows);
+}
+
+void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, const int rows[2],
+                        cu_sun_maps *out)
 {
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_CULL_FACE);
@@ -126,6 +162,9 @@ void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_NOISE);
     gl->BindTexture(GL_TEXTURE_3D, ctx->noise_tex);
     gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    if (p->method == CU_SHADOW_PEEL)
+        draw_peel(ctx, tiles, rows);
+    else
+        gl->DrawArrays(GL_TRIANGLES, 0, 3);
     gl->BindVertexArray(0);
 }

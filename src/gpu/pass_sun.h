@@ -24,6 +24,8 @@ void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl);
  * it. */
 int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, int size, cu_target *map, cu_sun_maps *out,
                            cu_error *err);
-/* Renders ctx->cloud's map for ctx's sun direction and updates out. */
-void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, cu_sun_maps *out);
+/* Renders ctx->cloud's map for ctx's sun direction and updates out: its rows [rows[0], rows[1]) (a band of them,
+ * frame_maps.c), or all (rows NULL). Leaves the scissor test on those rows (every tile), or off for all. */
+void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, const int rows[2],
+                        cu_sun_maps *out);
 #endif

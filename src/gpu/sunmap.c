@@ -1,5 +1,6 @@
 /* src/gpu/sunmap.c: sun-map geometry on the CPU (see sunmap.h). */
 #include "sunmap.h"
+#include <math.h>
 
 void cu_sun_basis(vec3 d, vec3 *right, vec3 *up)
 {
@@ -11,6 +12,30 @@ void cu_sun_basis(vec3 d, vec3 *right, vec3 *up)
 double cu_sun_radius(const cu_cloud *cl)
 {
     return cl->bound_radius * 1.01 + 1.0;
+}
+
+/* An ellipsoid's shadow on a plane, seen along the plane's normal, reaches sqrt(sum (r_k u_k)^2) from its centre's
+ * image along any unit u in the plane (the support function of the axis-aligned ellipsoid: an orthographic view). */
+void cu_sun_map_texels(const cu_cloud *cl, vec3 right, vec3 up, double R, int size, int box[4])
+{
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (int i = 0; i < cl->n; i++) {
+        vec3 r = cl->r[i], axis[2] = {right, up};
+        for (int a = 0; a < 2; a++) {
+            vec3 u = axis[a];
+            double c = v3_dot(cl->c[i], u);
+            double h = sqrt(r.x * r.x * u.x * u.x + r.y * r.y * u.y * u.y + r.z * r.z * u.z * u.z);
+            lo[a] = fmin(lo[a], c - h);
+            hi[a] = fmax(hi[a], c + h);
+        }
+    }
+    for (int a = 0; a < 2; a++) {
+        /* texel t's centre lies at ((t + 0.5) / size * 2 - 1) R: the first at or past lo, the last at or before hi */
+        double t0 = floor((lo[a] / R + 1.0) * 0.5 * size - 0.5) - 1.0;
+        double t1 = ceil((hi[a] / R + 1.0) * 0.5 * size - 0.5) + 2.0;
+        box[a] = t0 < 0 ? 0 : t0 > size ? size : (int)t0;
+        box[2 + a] = t1 < box[a] ? box[a] : t1 > size ? size : (int)t1;
+    }
 }
 
 int cu_union_intervals(const cu_cloud *cl, vec3 o, vec3 d, double *a, double *b, int max)

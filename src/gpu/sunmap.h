@@ -10,6 +10,9 @@ int cu_sun_max_intervals(const cu_cloud *cl, vec3 sun_dir, int grid);
 void cu_sun_basis(vec3 sun_dir, vec3 *right, vec3 *up);
 /* Half-size R of the sun maps: the plane sits at 2R along the sun direction, depths span 4R. */
 double cu_sun_radius(const cu_cloud *cl);
+/* The texels (x0, y0, x1, y1, half-open) of a size x size map over [-R, R]^2 in the sun plane (right, up) whose rays
+ * through their centres can meet an ellipsoid of cl, a texel wider each way; an empty box for none. */
+void cu_sun_map_texels(const cu_cloud *cl, vec3 right, vec3 up, double R, int size, int box[4]);
 /* Number of union intervals along the ray o + t d, and their ends (up to max). */
 int cu_union_intervals(const cu_cloud *cl, vec3 o, vec3 d, double *a, double *b, int max);
 #endif
