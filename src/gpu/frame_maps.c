@@ -57,9 +57,9 @@ static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, int urgen
     double f = bind_mature(r, sl, sl->maps_sun);
     cu_pass_sun_update(&r->pass_sun, ctx, &sl->sun_map, NULL, &sl->sun);
     ctx->sun = sl->sun;
-    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, &sl->slab, 1);
+    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->slab_map, NULL, &sl->slab, 1);
     if (!sl->zenith_valid)
-        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, &sl->slab, 1);
+        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, NULL, &sl->slab, 1);
     sl->zenith_valid = 1;
     int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
              cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, urgent ? NULL : &r->msd_allowance,
@@ -103,11 +103,11 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
     int last = ++sl->next_band == bands;
     cu_slab_maps slab = sl->slab;
     const int rows[2] = {y0, y1}; /* every tile of the row band (the sun map's tiles lie side by side) */
-    cu_pass_sun_update(&r->pass_sun, ctx, &sl->next_sun_map, rows, &sl->next_sun_maps); /* scissor left on them */
+    cu_pass_sun_update(&r->pass_sun, ctx, &sl->next_sun_map, rows, &sl->next_sun_maps);
     ctx->sun = sl->next_sun_maps;
-    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->next_slab_map, &slab, last);
+    cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->next_slab_map, rows, &slab, last);
     if (sl->next_zenith)
-        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->next_slab_map, &slab, last);
+        cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->next_slab_map, rows, &slab, last);
     gl->Disable(GL_SCISSOR_TEST);
     if (!last) {
         sl->factor = f;

@@ -1,5 +1,6 @@
 /* src/gpu/pass_slab.c: the slab pass (see pass_slab.h). */
 #include "pass_slab.h"
+#include "pass_sun.h"
 #include "collector.h"
 #include "error.h"
 #include "sunmap.h"
@@ -162,7 +163,7 @@ void cu_pass_slab_free(cu_pass_slab *p)
 
 /* Map `which`, then its mip chain: the coverage-weighted averages the shader reads at the blur's level. */
 void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
-                         cu_slab_maps *out, int mipmaps)
+                         const int rows[2], cu_slab_maps *out, int mipmaps)
 {
     if (!map[which].fbo)
         return;
@@ -187,7 +188,12 @@ void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int whi
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_NOISE);
     gl->BindTexture(GL_TEXTURE_3D, ctx->noise_tex);
     gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(GL_TRIANGLES, 0, 3);
+    /* zero where a ray meets no ellipsoid (slab_map.frag), drawn only where one can */
+    static const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    cu_sun_band_scissor(gl, rows);
+    gl->ClearBufferfv(GL_COLOR, 0, zero);
+    gl->ClearBufferfv(GL_COLOR, 1, zero);
+    cu_sun_map_tiles(ctx, right, up, 1, rows);
     gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     for (int i = 0; i < 2 && mipmaps; i++) {

@@ -31,8 +31,9 @@ int cu_pass_slab_maps_create(const cu_pass_slab *p, const cu_gpu_scene *ctx, int
 void cu_pass_slab_destroy(cu_pass_slab *p, const cu_gl *gl);
 /* The tables (with the renderer). */
 void cu_pass_slab_free(cu_pass_slab *p);
-/* Renders ctx->cloud's map 0 (from the sun) or 1 (from the zenith: it depends on the cloud alone), within the
- * scissor box when the caller set one, and its mip chain when mipmaps (the last band of the map). */
+/* Renders ctx->cloud's map 0 (from the sun) or 1 (from the zenith: it depends on the cloud alone), its rows
+ * [rows[0], rows[1]) (a band, frame_maps.c; NULL: all), and its mip chain when mipmaps (the last band of the map).
+ * Leaves the scissor as cu_sun_band_scissor sets it. */
 void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int which, const cu_target map[2],
-                         cu_slab_maps *out, int mipmaps);
+                         const int rows[2], cu_slab_maps *out, int mipmaps);
 #endif

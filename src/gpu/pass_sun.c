@@ -98,8 +98,7 @@ static void draw_front(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_t
     gl->BindVertexArray(0);
 }
 
-/* The rows of every tile (the scissor a band of the maps is drawn with), or all of them. */
-static void band_scissor(const cu_gl *gl, const int rows[2])
+void cu_sun_band_scissor(const cu_gl *gl, const int rows[2])
 {
     if (!rows) {
         gl->Disable(GL_SCISSOR_TEST);
@@ -109,17 +108,31 @@ static void band_scissor(const cu_gl *gl, const int rows[2])
     gl->Scissor(0, rows[0], 16384, rows[1] - rows[0]);
 }
 
-/* The map's tiles, only where the cloud's shadow can fall (cu_sun_map_texels): every texel of the rows first set to
- * what the shader writes where its ray meets no ellipsoid (peel: "no interval" in every tile's layers and no optical
- * depth; osm, fom: tile 0 the same, the other tiles zero), then each tile drawn inside the box. A texel outside costs
- * a cast through every ellipsoid and more (llvmpipe runs a loop's first trip whether or not a pixel takes it); a
- * cumulus seen from the sun leaves much of the square empty. */
+/* A texel outside the box costs a cast through every ellipsoid and more (llvmpipe runs a loop's first trip whether
+ * or not a pixel takes it); a cumulus seen from the sun leaves much of the square empty. */
+void cu_sun_map_tiles(const cu_gpu_scene *ctx, vec3 right, vec3 up, int tiles, const int rows[2])
+{
+    const cu_gl *gl = ctx->gl;
+    int size = ctx->sun_size, y0 = rows ? rows[0] : 0, y1 = rows ? rows[1] : size, box[4];
+    cu_sun_map_texels(ctx->cloud, right, up, ctx->sun_R, size, box);
+    int b0 = box[1] > y0 ? box[1] : y0, b1 = box[3] < y1 ? box[3] : y1;
+    gl->Enable(GL_SCISSOR_TEST);
+    if (b1 > b0 && box[2] > box[0])
+        for (int j = 0; j < tiles; j++) {
+            gl->Scissor(j * size + box[0], b0, box[2] - box[0], b1 - b0);
+            gl->DrawArrays(GL_TRIANGLES, 0, 3);
+        }
+    cu_sun_band_scissor(gl, rows);
+}
+
+/* The analytic maps' rows first set to what their shader writes where a ray meets no ellipsoid (peel: "no interval"
+ * in every tile's layers and no optical depth; osm, fom: tile 0 the same, the other tiles zero), then the tiles
+ * drawn where the cloud's shadow can fall. */
 static void draw_boxed(const cu_pass_sun *p, const cu_gpu_scene *ctx, int tiles, const int rows[2])
 {
     const cu_gl *gl = ctx->gl;
     static const GLfloat none[4] = {1e30f, 1e30f, 0.0f, 0.0f}, zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    int size = ctx->sun_size, y0 = rows ? rows[0] : 0, y1 = rows ? rows[1] : size, box[4];
-    cu_sun_map_texels(ctx->cloud, ctx->sun_right, ctx->sun_up, ctx->sun_R, size, box);
+    int size = ctx->sun_size, y0 = rows ? rows[0] : 0, y1 = rows ? rows[1] : size;
     gl->Enable(GL_SCISSOR_TEST);
     if (p->method == CU_SHADOW_PEEL) {
         gl->Scissor(0, y0, size * tiles, y1 - y0);
@@ -131,13 +144,7 @@ static void draw_boxed(const cu_pass_sun *p, const cu_gpu_scene *ctx, int tiles,
         gl->Scissor(size, y0, size * (tiles - 1), y1 - y0);
         gl->ClearBufferfv(GL_COLOR, 0, zero);
     }
-    int b0 = box[1] > y0 ? box[1] : y0, b1 = box[3] < y1 ? box[3] : y1;
-    if (b1 > b0 && box[2] > box[0])
-        for (int j = 0; j < tiles; j++) {
-            gl->Scissor(j * size + box[0], b0, box[2] - box[0], b1 - b0);
-            gl->DrawArrays(GL_TRIANGLES, 0, 3);
-        }
-    band_scissor(gl, rows);
+    cu_sun_map_tiles(ctx, ctx->sun_right, ctx->sun_up, tiles, rows);
 }
 
 void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, const int rows[2],
@@ -147,7 +154,7 @@ void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_
     gl->Disable(GL_CULL_FACE);
     gl->Disable(GL_BLEND);
     out->intervals = 0;
-    band_scissor(gl, rows);
+    cu_sun_band_scissor(gl, rows);
     if (p->method == CU_SHADOW_FRONT) {
         draw_front(p, ctx, map);
         return;

@@ -24,6 +24,13 @@ void cu_pass_sun_destroy(cu_pass_sun *p, const cu_gl *gl);
  * it. */
 int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, int size, cu_target *map, cu_sun_maps *out,
                            cu_error *err);
+/* The scissor a band of a map's rows is drawn with: rows [rows[0], rows[1]) of every tile; none for rows NULL. */
+void cu_sun_band_scissor(const cu_gl *gl, const int rows[2]);
+/* The bound full-screen program over `tiles` tiles side by side of a map seen along right x up (sun_size texels a
+ * tile, over ctx->sun_R), in their rows [rows[0], rows[1]) (NULL: all), only in the box of texels whose rays can meet
+ * ctx->cloud (cu_sun_map_texels): the caller has set the others to what a ray meeting nothing gives. Leaves the
+ * band's scissor (cu_sun_band_scissor). */
+void cu_sun_map_tiles(const cu_gpu_scene *ctx, vec3 right, vec3 up, int tiles, const int rows[2]);
 /* Renders ctx->cloud's map for ctx's sun direction and updates out: its rows [rows[0], rows[1]) (a band of them,
  * frame_maps.c), or all (rows NULL). Leaves the scissor test on those rows (every tile), or off for all. */
 void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, const int rows[2],

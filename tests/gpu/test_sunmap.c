@@ -4,7 +4,8 @@
  * a fine CPU ray-march of the same density (noise included), Kol's front-depth estimate fails where the map does
  * not, and no map holds a NaN. The trade-study alternatives (light.shadow = osm: regular-slice opacity shadow maps,
  * fom: Fourier opacity maps) are read back and evaluated at the same probes with their documented accuracy. And the
- * box the peeled map is drawn in holds every texel whose ray meets the cloud. */
+ * box the peeled map is drawn in holds every texel whose ray meets the cloud, and the slab maps' coverage is the
+ * union's, from the sun and from the zenith. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -536,6 +537,55 @@ static void test_map_texels(void **st)
     assert_true(empty_texels > texels / 10);
 }
 
+/* The slab maps (ms.mode = slab, pass_slab.c), seen from the sun and, for the sky's light, from the zenith: a sun 10
+ * degrees high, so that the two see the cloud along different axes and a box made for one would cut the other. Each
+ * texel's coverage (level 0, channel 0) is 1 where its ray meets the union of the ellipsoids on the CPU and 0 where it
+ * does not, apart from rays within a metre of grazing, where fp32 and double may differ. */
+static void test_slab_map_coverage(void **st)
+{
+    (void)st;
+    static const char *const sets[] = {"ms.mode=slab", "ms.sky_light=on", "sky.model=preetham", NULL};
+    if (tr_render(&ctx, TWO("-140 300 0", "150 150 150", "200 260 80", "120 90 200", "elevation = 10\nazimuth = 60\n"),
+                  sets))
+        fail_msg("%s", ctx.err);
+    cu_renderer *r = ctx.r;
+    const cu_cloud *cl = &r->clouds.slot[0].cloud;
+    int size = r->ctx.sun_size, checked = 0;
+    double R = cu_sun_radius(cl);
+    float *img = malloc(sizeof(float) * 4 * (size_t)size * size);
+    assert_non_null(img);
+    for (int which = 0; which < 2; which++) {
+        assert_true(r->clouds.slot[0].slab_map[which].fbo != 0);
+        vec3 dir = which == 0 ? r->sky.sun_dir : v3(0, 1, 0), right, up;
+        cu_sun_basis(dir, &right, &up);
+        r->gl.BindFramebuffer(GL_FRAMEBUFFER, r->clouds.slot[0].slab_map[which].fbo);
+        r->gl.ReadPixels(0, 0, size, size, GL_RGBA, GL_FLOAT, img);
+        int covered = 0;
+        for (int y = 0; y < size; y++)
+            for (int x = 0; x < size; x++) {
+                double u = ((x + 0.5) / size * 2 - 1) * R, v = ((y + 0.5) / size * 2 - 1) * R, a[4], b[4];
+                vec3 o = v3_add(v3_add(v3_scale(right, u), v3_scale(up, v)), v3_scale(dir, 2 * R));
+                int n = cu_union_intervals(cl, o, v3_scale(dir, -1), a, b, 4);
+                double chord = 0;
+                for (int k = 0; k < n && k < 4; k++)
+                    chord += b[k] - a[k];
+                float cov = img[4 * (y * size + x)];
+                if (n > 0 && chord < 1.0)
+                    continue; /* grazing */
+                checked++;
+                covered += n > 0;
+                if (cov != (n > 0 ? 1.0f : 0.0f))
+                    fail_msg("slab map %d texel (%d, %d): coverage %g, the CPU's union %s", which, x, y, cov,
+                             n > 0 ? "meets it" : "does not");
+            }
+        printf("slab map %d: %d of %d texels covered\n", which, covered, size * size);
+        assert_true(covered > size * size / 20 && covered < size * size);
+    }
+    assert_true(checked > size * size);
+    r->gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    free(img);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -545,6 +595,7 @@ int main(void)
         cmocka_unit_test(test_alternatives),
         cmocka_unit_test(test_alternative_renders),
         cmocka_unit_test(test_map_texels),
+        cmocka_unit_test(test_slab_map_coverage),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
