@@ -53,8 +53,9 @@ int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err)
     g->push = calloc(count, sizeof *g->push);
     g->phi = calloc(count, sizeof *g->phi);
     g->d = calloc(count, sizeof *g->d);
+    g->leak = calloc(count, sizeof *g->leak);
     g->out = calloc(4 * count, sizeof *g->out);
-    if (!g->ke || !g->q || !g->push || !g->phi || !g->d || !g->out) {
+    if (!g->ke || !g->q || !g->push || !g->phi || !g->d || !g->leak || !g->out) {
         cu_msd_free(g);
         return cu_fail(err, "ms.grid: out of memory for %dx%dx%d cells", g->n[0], g->n[1], g->n[2]);
     }
@@ -68,6 +69,7 @@ void cu_msd_free(cu_msd *g)
     free(g->push);
     free(g->phi);
     free(g->d);
+    free(g->leak);
     free(g->out);
     memset(g, 0, sizeof *g);
 }
@@ -179,6 +181,35 @@ static vec3 gradient(const cu_msd *g, int i, int j, int k)
     return v3(v[0], v[1], v[2]);
 }
 
+/* The cloud's surface as the cells see it is a staircase: a face of it slanted to the grid's axes, normal n, is
+ * covered by cell faces of |n_x| + |n_y| + |n_z| times its area (1.5 times over a sphere, more over a noisy cloud),
+ * and Marshak's condition at every one of them lets the light out through that much surface. The solve still sends
+ * out what came in, but from a fluence too low by about that factor near the surface, where the light the eye sees
+ * comes from. So each cloud cell's faces to empty space leak in proportion to the true surface: weighted by
+ * |n| / (|n_x| + |n_y| + |n_z|), n the gradient of the cells' occupancy by the 3x3x3 Sobel operator (the surface's
+ * slant over the neighbouring cells; a cell's own faces say only which way it steps). 1 where n is zero. */
+static void leak_weights(cu_msd *g)
+{
+    static const double W[3] = {1.0, 2.0, 1.0}; /* the smoothing across the derivative's axis, offsets -1, 0, 1 */
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int c = cu_msd_at(g, i, j, k);
+                double n[3] = {0.0, 0.0, 0.0};
+                for (int dz = -1; dz <= 1; dz++)
+                    for (int dy = -1; dy <= 1; dy++)
+                        for (int dx = -1; dx <= 1; dx++) {
+                            if (!inside(g, i + dx, j + dy, k + dz))
+                                continue;
+                            n[0] += dx * W[dy + 1] * W[dz + 1];
+                            n[1] += dy * W[dx + 1] * W[dz + 1];
+                            n[2] += dz * W[dx + 1] * W[dy + 1];
+                        }
+                double l1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
+                g->leak[c] = l1 > 0.0 ? (float)(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / l1) : 1.0f;
+            }
+}
+
 /* The coefficients from the fluence so far, half way from the last ones (damped: they feed back on the fluence they
  * shape): Wilson's limited D, at most two cells (no light yet: the first round), and the push 3 |g| D Q capped at
  * phi. */
@@ -207,7 +238,7 @@ static void coefficients(cu_msd *g, double s_tr_per_ke, double g3)
 /* One over-relaxed Gauss-Seidel sweep over the cloud's cells; returns the sum of the changes. u is the direction the
  * push goes (the beam's, or against it for g < 0): G = u push at a cell. Per unit volume, a face across side h
  * carries -D_f (phi_j - phi_i) / h^2 + G_f.n / h between two cloud cells (D_f the harmonic mean, G_f the mean), and
- * (a phi + G.n) / ((2a + 1) h) out of the cloud (Marshak, surface_phi). */
+ * (a phi + G.n) / ((2a + 1) h) out of the cloud (Marshak, surface_phi), weighted by the cell's leak (leak_weights). */
 static double sweep(cu_msd *g, vec3 u)
 {
     double sum = 0.0, uv[3] = {u.x, u.y, u.z};
@@ -227,9 +258,9 @@ static double sweep(cu_msd *g, vec3 u)
                         diag += df / (h * h);
                         rhs += df * g->phi[cj] / (h * h) - 0.5 * (gi + uv[ax] * g->push[cj] * sgn) / h;
                     } else {
-                        double a2 = 2.0 * di / h;
-                        diag += a2 / ((2.0 * a2 + 1.0) * h);
-                        rhs -= gi / ((2.0 * a2 + 1.0) * h);
+                        double a2 = 2.0 * di / h, w = g->leak[c] / ((2.0 * a2 + 1.0) * h);
+                        diag += w * a2;
+                        rhs -= w * gi;
                     }
                 }
                 double now = g->phi[c] + SOR * (rhs / diag - g->phi[c]);
@@ -291,6 +322,7 @@ void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps
     if (!(asym > -1.0 && asym < 1.0))
         asym = 0.0;
     first_scattering(g, sun_dir, f);
+    leak_weights(g);
     double s_tr_per_ke = (1.0 - f) * (1.0 - asym), g3 = 3.0 * fabs(asym);
     vec3 u = v3_scale(sun_dir, asym < 0.0 ? 1.0 : -1.0); /* the beam travels away from the sun */
     g->sweeps = 0;

@@ -25,6 +25,7 @@ typedef struct cu_msd {
     float *push;          /* its forward flux along the beam, limited (ms_diffusion.c) */
     float *phi;           /* fluence of the diffuse light per unit sun irradiance */
     float *d;             /* the limited diffusion coefficient, m */
+    float *leak;          /* per cloud cell: the true surface's area over its faces' to empty space (ms_diffusion.c) */
     float *out;           /* 4 per cell: fluence and flux (x, y, z) per unit sun irradiance: the texture */
     int sweeps;           /* the last solve's relaxation sweeps (all rounds) */
     double change;        /* its last sweep's summed change relative to the summed fluence */

@@ -2,7 +2,8 @@
  * (ms.mode = diffusion). Against closed forms: a wide slab's first scattering takes all the sunlight its optical depth
  * stops, the solve sends out exactly what the sunbeam put in (no light made or lost), and its transmission is the
  * Eddington (two-stream) value of a conservative slab within 10 %; a sphere lit from above is mirror-symmetric about
- * the sun's axis and brighter on top than at its base; a solve started from the last one (the sun moved half a
+ * the sun's axis and brighter on top than at its base; the light leaves through the true surface's area, not the
+ * staircase of cells that stands for it; a solve started from the last one (the sun moved half a
  * degree) takes fewer sweeps than one from nothing and finds the same light; hostile grids and clouds stay finite. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,16 +15,22 @@
 #include <string.h>
 #include "ms_diffusion.h"
 
+/* A grid over the box lo..hi, `cells` along its longest side, holding nothing yet. */
+static void empty_grid(cu_msd *g, vec3 lo, vec3 hi, int cells)
+{
+    cu_cloud cl;
+    memset(&cl, 0, sizeof cl);
+    cl.bounds_min = lo;
+    cl.bounds_max = hi;
+    cu_error e = {{0}};
+    assert_int_equal(cu_msd_init(g, &cl, cells, &e), 0);
+}
+
 /* A slab of optical depth tau, `thick` cells thick, across a 2 km square, lit straight from above: the grid's cells
  * are filled directly (the density field is not what is tested here). */
 static void slab(cu_msd *g, double tau, int thick)
 {
-    cu_cloud cl;
-    memset(&cl, 0, sizeof cl);
-    cl.bounds_min = v3(-1000, -50, -1000);
-    cl.bounds_max = v3(1000, 50, 1000);
-    cu_error e = {{0}};
-    assert_int_equal(cu_msd_init(g, &cl, 64, &e), 0);
+    empty_grid(g, v3(-1000, -50, -1000), v3(1000, 50, 1000), 64);
     /* the grid keeps a quarter of its cells across the thin side: 15 here, of which `thick` hold cloud */
     assert_true(g->n[1] - 2 * CU_MSD_MARGIN >= thick);
     int j0 = (g->n[1] - thick) / 2;
@@ -155,6 +162,82 @@ static void test_warm_start(void **st)
     cu_msd_free(&fresh);
 }
 
+/* A grid of 40^3 cubic 10 m cells, filled directly: k_e 0.05 where inside(i, j, k) says, else empty. */
+static void cube_grid(cu_msd *g, int (*inside)(int, int, int))
+{
+    empty_grid(g, v3(-180, -180, -180), v3(180, 180, 180), 40);
+    assert_true(g->n[0] == 40 && g->n[1] == 40 && g->n[2] == 40 && fabs(g->h[0] - 10.0) < 1e-9);
+    for (int k = 0; k < 40; k++)
+        for (int j = 0; j < 40; j++)
+            for (int i = 0; i < 40; i++)
+                g->ke[cu_msd_at(g, i, j, k)] = inside(i, j, k) ? 0.05f : 0.0f;
+    cu_msd_solve(g, v3(0, 1, 0), 0.0, 0.85, 1, 1e-5); /* the weights come with the solve */
+}
+
+static int level(int i, int j, int k) { (void)i; (void)k; return j < 20; }
+static int slant2(int i, int j, int k) { (void)k; return i + j < 40; }
+static int slant3(int i, int j, int k) { return i + j + k < 60; }
+static int ball(int i, int j, int k)
+{
+    return (i - 19.5) * (i - 19.5) + (j - 19.5) * (j - 19.5) + (k - 19.5) * (k - 19.5) < 144.0;
+}
+
+/* Faces of cloud cell (i, j, k) to empty space. */
+static int open_faces(const cu_msd *g, int i, int j, int k)
+{
+    static const int o[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    int n = 0;
+    for (int f = 0; f < 6; f++) {
+        int a = i + o[f][0], b = j + o[f][1], c = k + o[f][2];
+        n += a < 0 || b < 0 || c < 0 || a >= g->n[0] || b >= g->n[1] || c >= g->n[2] ||
+             g->ke[cu_msd_at(g, a, b, c)] == 0.0f;
+    }
+    return n;
+}
+
+/* The light leaves through the cloud's true surface, not the staircase of cell faces that stands for it: a plane
+ * slanted as (1, 1, 0) or (1, 1, 1) is covered by sqrt 2 or sqrt 3 times its area of faces, so each of its surface
+ * cells' faces leaks 1 / sqrt 2 or 1 / sqrt 3 (exactly: the Sobel operator's gradient of a symmetric staircase is
+ * symmetric); a level one 1. Over a sphere of radius 12 cells the faces cover about 1.5 times its area; weighted,
+ * they cover its area. */
+static void test_leak_weights(void **st)
+{
+    (void)st;
+    static const struct { int (*inside)(int, int, int); double want; } planes[] = {
+        {level, 1.0}, {slant2, 0.70710678}, {slant3, 0.57735027}};
+    for (size_t p = 0; p < sizeof planes / sizeof planes[0]; p++) {
+        cu_msd g;
+        cube_grid(&g, planes[p].inside);
+        int checked = 0;
+        for (int k = 2; k < 38; k++)
+            for (int j = 2; j < 38; j++)
+                for (int i = 2; i < 38; i++)
+                    if (g.ke[cu_msd_at(&g, i, j, k)] > 0.0f && open_faces(&g, i, j, k) > 0) {
+                        assert_true(fabs(g.leak[cu_msd_at(&g, i, j, k)] - planes[p].want) < 1e-6);
+                        checked++;
+                    }
+        print_message("plane %zu: %d surface cells leak %.4f a face\n", p, checked, planes[p].want);
+        assert_true(checked > 500);
+        cu_msd_free(&g);
+    }
+    cu_msd g;
+    cube_grid(&g, ball);
+    double faces = 0.0, weighted = 0.0, area = 4.0 * CU_PI * 120.0 * 120.0;
+    for (int k = 0; k < 40; k++)
+        for (int j = 0; j < 40; j++)
+            for (int i = 0; i < 40; i++)
+                if (g.ke[cu_msd_at(&g, i, j, k)] > 0.0f) {
+                    int n = open_faces(&g, i, j, k);
+                    faces += n * 100.0;
+                    weighted += n * 100.0 * g.leak[cu_msd_at(&g, i, j, k)];
+                }
+    print_message("sphere of 120 m: faces to empty space %.3f of its area, weighted %.3f\n", faces / area,
+                  weighted / area);
+    assert_true(faces > 1.3 * area);
+    assert_true(fabs(weighted / area - 1.0) < 0.05);
+    cu_msd_free(&g);
+}
+
 static void all_finite(const cu_msd *g)
 {
     size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
@@ -209,6 +292,7 @@ int main(void)
         cmocka_unit_test(test_slab_energy_and_transmission),
         cmocka_unit_test(test_sphere_symmetry_and_gradient),
         cmocka_unit_test(test_warm_start),
+        cmocka_unit_test(test_leak_weights),
         cmocka_unit_test(test_extremes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
