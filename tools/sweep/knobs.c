@@ -232,6 +232,18 @@ int knob_preset_eligible(int k, int j)
      * (scenes/field_noon.scene), content lost rather than precision; the sweep's views did not punish it */
     if (sw_knob_is(k, "quality.max_intervals"))
         return atoi(sw_knobs[k].vals[j]) >= 2;
+    /* a diffusion grid's solve runs on the CPU when a cloud's maps are made and again as the sun turns, outside the
+     * static frames the sweep times: every cloud of a field in its first frame (scenes/field_noon.scene: 35 solves,
+     * seconds), each new cloud of a living sky in the frame it appears. A preset chosen on frame time alone would hide
+     * that cost, so it is measured and reported but not chosen (README "Speed against accuracy") */
+    if (sw_knob_is(k, "ms.mode"))
+        return strcmp(sw_knobs[k].vals[j], "diffusion") != 0;
+    /* the sun's maps are made outside the static frames the sweep times (once for a still sun, a band a frame while it
+     * moves): a value that makes them dearer than high's looks free here (the 2026-12-06 sweep took 64 sun samples
+     * for low, twice its maps' cost, on a timing difference within the noise), so only high's or a cheaper one */
+    if (sw_knob_is(k, "light.sun_samples") || sw_knob_is(k, "light.sun_intervals") ||
+        sw_knob_is(k, "quality.sun_map_size") || sw_knob_is(k, "ms.blur"))
+        return j <= sw_knobs[k].high;
     /* the output resolution is the application's (--size), not a scene key a preset can carry */
     if (sw_knob_is(k, "output.scale"))
         return j == sw_knobs[k].high;
