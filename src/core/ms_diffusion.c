@@ -187,7 +187,9 @@ static vec3 gradient(const cu_msd *g, int i, int j, int k)
  * out what came in, but from a fluence too low by about that factor near the surface, where the light the eye sees
  * comes from. So each cloud cell's faces to empty space leak in proportion to the true surface: weighted by
  * |n| / (|n_x| + |n_y| + |n_z|), n the gradient of the cells' occupancy by the 3x3x3 Sobel operator (the surface's
- * slant over the neighbouring cells; a cell's own faces say only which way it steps). 1 where n is zero. */
+ * slant over the neighbouring cells; a cell's own faces say only which way it steps), taken per metre: a flat
+ * layer's cells are wider than tall, and a step of one cell up over one across is a gentle slope there, not 45 degrees.
+ * 1 where n is zero. */
 static void leak_weights(cu_msd *g)
 {
     static const double W[3] = {1.0, 2.0, 1.0}; /* the smoothing across the derivative's axis, offsets -1, 0, 1 */
@@ -195,6 +197,9 @@ static void leak_weights(cu_msd *g)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
                 int c = cu_msd_at(g, i, j, k);
+                g->leak[c] = 1.0f;
+                if (!holds(g, c))
+                    continue; /* read only at cloud cells' faces */
                 double n[3] = {0.0, 0.0, 0.0};
                 for (int dz = -1; dz <= 1; dz++)
                     for (int dy = -1; dy <= 1; dy++)
@@ -205,8 +210,11 @@ static void leak_weights(cu_msd *g)
                             n[1] += dy * W[dx + 1] * W[dz + 1];
                             n[2] += dz * W[dx + 1] * W[dy + 1];
                         }
+                for (int a = 0; a < 3; a++)
+                    n[a] /= g->h[a]; /* in metres: a flat layer's cells are wider than tall */
                 double l1 = fabs(n[0]) + fabs(n[1]) + fabs(n[2]);
-                g->leak[c] = l1 > 0.0 ? (float)(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / l1) : 1.0f;
+                if (l1 > 0.0)
+                    g->leak[c] = (float)(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / l1);
             }
 }
 

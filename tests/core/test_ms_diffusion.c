@@ -238,6 +238,45 @@ static void test_leak_weights(void **st)
     cu_msd_free(&g);
 }
 
+/* A flat layer's grid has cells wider than tall (a quarter of the cells across its thickness): here 27.8 m across and
+ * 4.4 m tall. A staircase one cell up per cell across is a slope of 4.4 in 27.8 there, not 45 degrees: its faces cover
+ * |n_x| + |n_y| = 1.145 times its area (n its unit normal in metres), so each leaks 0.873, not the cubic grid's
+ * 1 / sqrt 2; a level surface leaks 1. */
+static int flat_level(int i, int j, int k) { (void)i; (void)k; return j >= 2 && j < 8; }
+static int flat_slant(int i, int j, int k) { (void)k; return j >= 2 && i + j < 24; }
+
+static void test_leak_weights_flat(void **st)
+{
+    (void)st;
+    int (*const shapes[2])(int, int, int) = {flat_level, flat_slant};
+    for (int p = 0; p < 2; p++) {
+        cu_msd g;
+        empty_grid(&g, v3(-500, -20, -500), v3(500, 20, 500), 40);
+        assert_true(g.n[0] == 40 && g.n[1] == 13 && g.h[0] > 5.0 * g.h[1]);
+        for (int k = 0; k < g.n[2]; k++)
+            for (int j = 0; j < g.n[1]; j++)
+                for (int i = 0; i < g.n[0]; i++)
+                    g.ke[cu_msd_at(&g, i, j, k)] = shapes[p](i, j, k) ? 0.5f : 0.0f;
+        cu_msd_solve(&g, v3(0, 1, 0), 0.0, 0.85, 1, 1e-5);
+        double nx = p ? 1.0 / g.h[0] : 0.0, ny = 1.0 / g.h[1], want = sqrt(nx * nx + ny * ny) / (nx + ny);
+        int checked = 0;
+        /* the slant's cells on its top side, away from its ends and the grid's edges */
+        for (int k = 2; k < g.n[2] - 2; k++)
+            for (int j = 3; j < 8; j++)
+                for (int i = 4; i < 21; i++)
+                    if (shapes[p](i, j, k) && !shapes[p](i + 1, j, k) + !shapes[p](i, j + 1, k) > 0) {
+                        assert_true(fabs(g.leak[cu_msd_at(&g, i, j, k)] - want) < 1e-6);
+                        checked++;
+                    }
+        print_message("flat grid (cells %.1f x %.1f m), %s: %d surface cells leak %.4f a face\n", g.h[0], g.h[1],
+                      p ? "slant" : "level", checked, want);
+        assert_true(checked > 100);
+        if (p)
+            assert_true(want > 0.85 && want < 0.9);
+        cu_msd_free(&g);
+    }
+}
+
 static void all_finite(const cu_msd *g)
 {
     size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
@@ -293,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_sphere_symmetry_and_gradient),
         cmocka_unit_test(test_warm_start),
         cmocka_unit_test(test_leak_weights),
+        cmocka_unit_test(test_leak_weights_flat),
         cmocka_unit_test(test_extremes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
