@@ -95,18 +95,6 @@ void cu_msd_sample(cu_msd *g, const cu_cloud *cl)
             }
 }
 
-/* Extinction at a cloud-local point: its cell's (the cells hold means, so the beam crossing them sees exactly the
- * optical depth they hold; interpolating would spread each cell's density half a cell outward and dim the beam
- * before it reaches the cloud). Zero outside the grid. */
-static double ke_at(const cu_msd *g, vec3 p)
-{
-    int i = (int)floor((p.x - g->lo.x) / g->h[0]), j = (int)floor((p.y - g->lo.y) / g->h[1]),
-        k = (int)floor((p.z - g->lo.z) / g->h[2]);
-    if (i < 0 || j < 0 || k < 0 || i >= g->n[0] || j >= g->n[1] || k >= g->n[2])
-        return 0.0;
-    return g->ke[cu_msd_at(g, i, j, k)];
-}
-
 /* Whether cell c holds cloud: an optical depth across it (its mean side) of at least CU_MSD_THIN. A wisp of less
  * scatters under a tenth of the light through it, most of which leaves at once; solved, its fluence hangs on a tiny
  * source and a huge coefficient, and the limiter's feedback makes it swing from sweep to sweep (at 0.01 the solve
@@ -116,18 +104,59 @@ static int holds(const cu_msd *g, int c)
     return g->ke[c] * g->side >= CU_MSD_THIN;
 }
 
-/* The first scattering, per cell: the power the sunbeam loses in it over its volume. The beam reaches the cell with
- * its delta-M transmittance T' where it enters (marched from the grid's edge toward the sun in steps of half the
- * smallest cell side, midpoint rule) and crosses a mean chord l (the cell's volume over its cross-section along the
- * beam), so it loses T' (1 - e^-(1-f) k_e l) over that cross-section, T' (1 - e^-(1-f) k_e l) / l per volume. A cell
- * is optically thick (a cumulus's mean free path is a few metres, a cell tens), so the source at the cell's centre,
- * (1 - f) k_e e^-tau, would lose most of the light. */
+/* The optical depth toward the sun from p, a point of cell (i, j, k), to the grid's edge, the cell itself left out:
+ * exact over the cells' constant extinctions (a 3D DDA, Amanatides & Woo 1987: the ray's crossings of the cells'
+ * planes, in order). A march in steps of half a cell read a step of the cell's own extinction before it left it, and
+ * half a step either way at every later boundary: for a sunbeam 30 degrees high through cells of optical depth 0.5
+ * the first scattering came out 13 % short, at 5 (a dense cloud) 89 % (test_ms_diffusion.c). */
+static double depth_to_sun(const cu_msd *g, int i, int j, int k, vec3 p, vec3 sun)
+{
+    int idx[3] = {i, j, k}, step[3];
+    double r[3] = {p.x - g->lo.x, p.y - g->lo.y, p.z - g->lo.z}, s[3] = {sun.x, sun.y, sun.z}, next[3], across[3];
+    for (int a = 0; a < 3; a++) {
+        step[a] = s[a] > 0.0 ? 1 : -1;
+        if (fabs(s[a]) < 1e-12) {
+            next[a] = across[a] = HUGE_VAL; /* never crosses this axis's planes */
+            continue;
+        }
+        double plane = (idx[a] + (s[a] > 0.0)) * g->h[a];
+        next[a] = fmax((plane - r[a]) / s[a], 0.0);
+        across[a] = g->h[a] / fabs(s[a]);
+    }
+    double tau = 0.0, t = 0.0;
+    for (int own = 1;; own = 0) {
+        int a = next[0] <= next[1] && next[0] <= next[2] ? 0 : next[1] <= next[2] ? 1 : 2;
+        if (next[a] == HUGE_VAL)
+            break;
+        if (!own)
+            tau += g->ke[cu_msd_at(g, idx[0], idx[1], idx[2])] * (next[a] - t);
+        t = next[a];
+        next[a] += across[a];
+        idx[a] += step[a];
+        if (idx[a] < 0 || idx[a] >= g->n[a])
+            break;
+    }
+    return tau;
+}
+
+/* The first scattering, per cell: the power the sunbeam loses in it over its volume. The beam comes in through the
+ * cell's faces toward the sun, each by its area across the beam, |s_a| times the face's; it crosses the cell along a
+ * mean chord l (the cell's volume over that cross-section), so the cell takes T' (1 - e^-(1-f) k_e l) / l per
+ * volume, T' the beam's delta-M transmittance where it comes in: at each of those faces' centres (depth_to_sun),
+ * weighted by its share of the cross-section. One transmittance for the whole cross-section (the one half a chord
+ * toward the sun of the centre) gave the faces that the beam reaches only through the neighbouring cell, the side of
+ * a cell in a level layer under a low sun, the light that the neighbour had already taken: 12 % more light than came
+ * in for a sunbeam 30 degrees high through cells of optical depth 0.5, 35 % through thick ones (test_ms_diffusion.c).
+ * A cell is optically thick (a cumulus's mean free path is a few metres, a cell tens), so the source at the cell's
+ * centre, (1 - f) k_e e^-tau, would lose most of the light. */
 static void first_scattering(cu_msd *g, vec3 sun, double f)
 {
-    double step = 0.5 * fmin(g->h[0], fmin(g->h[1], g->h[2]));
-    vec3 size = v3(g->n[0] * g->h[0], g->n[1] * g->h[1], g->n[2] * g->h[2]);
-    double reach = v3_len(size);
-    double chord = 1.0 / (fabs(sun.x) / g->h[0] + fabs(sun.y) / g->h[1] + fabs(sun.z) / g->h[2]);
+    double s[3] = {sun.x, sun.y, sun.z}, share[3], across = 0.0;
+    for (int a = 0; a < 3; a++) {
+        share[a] = fabs(s[a]) * g->h[(a + 1) % 3] * g->h[(a + 2) % 3];
+        across += share[a];
+    }
+    double chord = g->h[0] * g->h[1] * g->h[2] / across;
     for (int k = 0; k < g->n[2]; k++)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
@@ -135,15 +164,16 @@ static void first_scattering(cu_msd *g, vec3 sun, double f)
                 g->q[c] = 0.0f;
                 if (g->ke[c] <= 0.0f)
                     continue;
-                vec3 p = v3_add(centre(g, i, j, k), v3_scale(sun, 0.5 * chord));
-                double tau = 0.0;
-                for (double s = 0.5 * step; s < reach; s += step) {
-                    vec3 x = v3_add(p, v3_scale(sun, s)), r = v3_sub(x, g->lo);
-                    if (r.x < 0.0 || r.y < 0.0 || r.z < 0.0 || r.x > size.x || r.y > size.y || r.z > size.z)
-                        break;
-                    tau += step * ke_at(g, x);
+                vec3 o = centre(g, i, j, k);
+                double in = 0.0;
+                for (int a = 0; a < 3; a++) {
+                    if (share[a] <= 0.0)
+                        continue;
+                    double face[3] = {o.x, o.y, o.z};
+                    face[a] += (s[a] > 0.0 ? 0.5 : -0.5) * g->h[a]; /* the face toward the sun */
+                    in += share[a] * exp(-(1.0 - f) * depth_to_sun(g, i, j, k, v3(face[0], face[1], face[2]), sun));
                 }
-                g->q[c] = (float)(exp(-(1.0 - f) * tau) * (1.0 - exp(-(1.0 - f) * g->ke[c] * chord)) / chord);
+                g->q[c] = (float)(in / across * (1.0 - exp(-(1.0 - f) * g->ke[c] * chord)) / chord);
             }
 }
 

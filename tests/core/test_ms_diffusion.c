@@ -1,10 +1,11 @@
 /* tests/core/test_ms_diffusion.c: src/core/ms_diffusion.c, multiple scattering as flux-limited diffusion on a grid
  * (ms.mode = diffusion). Against closed forms: a wide slab's first scattering takes all the sunlight its optical depth
- * stops, the solve sends out exactly what the sunbeam put in (no light made or lost), and its transmission is the
- * Eddington (two-stream) value of a conservative slab within 10 %; a sphere lit from above is mirror-symmetric about
- * the sun's axis and brighter on top than at its base; the light leaves through the true surface's area, not the
- * staircase of cells that stands for it; a solve started from the last one (the sun moved half a
- * degree) takes fewer sweeps than one from nothing and finds the same light; hostile grids and clouds stay finite. */
+ * stops, the sun overhead or slanted, the solve sends out exactly what the sunbeam put in (no light made or lost),
+ * and its transmission is the Eddington (two-stream) value of a conservative slab within 10 %; a sphere lit from
+ * above is mirror-symmetric about the sun's axis and brighter on top than at its base; the light leaves through the
+ * true surface's area, not the staircase of cells that stands for it; a solve started from the last one (the sun
+ * moved half a degree) takes fewer sweeps than one from nothing and finds the same light; hostile grids and clouds
+ * stay finite. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -79,6 +80,35 @@ static void test_slab_energy_and_transmission(void **st)
         assert_true(g.change <= 1e-6);
         cu_msd_free(&g);
     }
+}
+
+/* A slanted sunbeam's first scattering takes exactly the light the slab stops: per unit of its area, the centre
+ * column's cells hold mu0 (1 - e^-tau/mu0) of the beam's irradiance, the sun 30, 60 and 90 degrees high, through
+ * cells of optical depth 0.17 to 10 (each cell 33 x 6.7 m: a layer's grid is wider than tall). Within 2 %; the beam
+ * marched in half-cell steps from one point of each cell took 0.9 % to 87 % too little under the low sun and up to
+ * 12 % too much under the high one. */
+static void test_slanted_beam(void **st)
+{
+    (void)st;
+    static const struct { double tau; int thick; } cases[] = {{2, 12}, {2, 4}, {5, 4}, {20, 12}, {40, 4}};
+    double worst = 0.0;
+    for (size_t n = 0; n < sizeof cases / sizeof cases[0]; n++)
+        for (int e = 30; e <= 90; e += 30) {
+            cu_msd g;
+            slab(&g, cases[n].tau, cases[n].thick);
+            double r = e * CU_PI / 180.0, mu0 = sin(r);
+            cu_msd_solve(&g, v3(0.0, mu0, cos(r)), 0.0, 0.85, 1, 1e-5);
+            double held = 0.0, want = mu0 * (1.0 - exp(-cases[n].tau / mu0));
+            for (int j = 0; j < g.n[1]; j++)
+                held += g.q[cu_msd_at(&g, g.n[0] / 2, j, g.n[2] / 2)] * g.h[1];
+            worst = fmax(worst, fabs(held / want - 1.0));
+            if (fabs(held / want - 1.0) > 0.02)
+                print_message("tau %.0f in %d cells, sun %d degrees high: %.4f of the beam, want %.4f\n",
+                              cases[n].tau, cases[n].thick, e, held, want);
+            assert_true(fabs(held / want - 1.0) < 0.02);
+            cu_msd_free(&g);
+        }
+    print_message("slanted beams: the first scattering within %.2f %% of the light each slab stops\n", 100.0 * worst);
 }
 
 /* A sphere of radius 300 m (core k_e 0.05 / m, boundary 40 m), lit from +y. */
@@ -329,6 +359,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_slab_energy_and_transmission),
+        cmocka_unit_test(test_slanted_beam),
         cmocka_unit_test(test_sphere_symmetry_and_gradient),
         cmocka_unit_test(test_warm_start),
         cmocka_unit_test(test_leak_weights),

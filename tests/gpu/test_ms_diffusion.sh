@@ -7,7 +7,8 @@
 # tracer. There the renderer must (a) reproduce that closed form within 12 % (it checks the grid, the split and the
 # source integration; measured +9 %, of which Wilson's limiter, which the closed form lacks, is 6) and (b) come closer
 # to the path tracer than the octave model (measured -16 % against the octaves' -30 %). A thick one with the sweep's
-# fuzzy 62 m boundary (optical depth 18): within 10 % of the path tracer (measured -3 %; the octave model misses 74 %).
+# fuzzy 62 m boundary (optical depth 18): within 10 % of the path tracer (measured -7 %, its own plane-parallel
+# closed form -10 %; the octave model misses 74 %).
 # A sphere lit from three sides: within 8 % of the path tracer; a dense layer from below on a fine grid: within 15 %
 # (below).
 # Also: the grid is solved (the debug log says so), and a frame in which many clouds' maps follow the sun re-solves
@@ -100,8 +101,8 @@ done
 # A dense layer (density 800, optical depth about 30, the fuzzy boundary) seen from below, the sun 60 degrees high
 # behind it, at ms.grid = 96: the grid's cells are 65 m across and 9 m tall. Its faces to empty space leak by the
 # surface's slant in metres; taken in cells (a step of one up over one across read as 45 degrees), the fuzzy top's
-# small steps held the light in and the base sent out 22 % more than the path tracer's (+11 % now). At the default
-# grid of 32 (cells 29 m tall, 1.5 transport mean free paths) the same view is +23 %: README, "Multiple scattering".
+# small steps held the light in and the base sent out 22 % more than the path tracer's (+10 % now). At the default
+# grid of 32 (cells 29 m tall, 1.5 transport mean free paths) the same view is +14 %: README, "Multiple scattering".
 scene 800 62 "3000 100 3000" "8 8" "0 -1500 -600" > "$T/dense.scene"
 if $PT "$T/dense.scene" -o "$T/dense_pt.pfm" --spp 2048 -q 2>"$T/err" &&
    $C render "$T/dense.scene" -o "$T/dense_diffusion.pfm" --set quality.preset=high --set ms.mode=diffusion \
@@ -116,7 +117,7 @@ else cat "$T/err" >&2; t_fail "dense layer from below" "path tracer or render fa
 # front of it, beside it and behind it: a round cloud's surface crosses the grid's cells at every slant, and the
 # staircase of cell faces standing for it is about 1.5 times its area. Light leaks out through each face, so
 # unweighted the grid's fluence, which the eye sees, came out 13-18 % low (-14.5, -13.1, -17.7 %); with the faces
-# weighted to the true surface (ms_diffusion.c leak_weights) it is -1.6, +0.6 and -4.9 % off the path tracer.
+# weighted to the true surface (ms_diffusion.c leak_weights) it is -2.5, -0.4 and -6.0 % off the path tracer.
 for az in 135 90 0; do
   scene 400 62 "300 300 300" "24 24" "0 0 -1500" 26 "elevation = 30
 azimuth = $az" > "$T/sphere$az.scene"
