@@ -22,6 +22,25 @@
 #define ROUND_SWEEPS 40 /* sweeps of the linear problem in a round before the coefficients are taken again */
 #define SETTLED 10      /* a round that settles within this many sweeps ends the solve */
 
+/* The cells' arrays, zeroed, for the sizes g->n and g->h already set; 1 (and nothing held) when out of memory. */
+static int grid_alloc(cu_msd *g)
+{
+    g->side = cbrt(g->h[0] * g->h[1] * g->h[2]);
+    size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
+    g->ke = calloc(count, sizeof *g->ke);
+    g->q = calloc(count, sizeof *g->q);
+    g->push = calloc(count, sizeof *g->push);
+    g->phi = calloc(count, sizeof *g->phi);
+    g->d = calloc(count, sizeof *g->d);
+    g->leak = calloc(count, sizeof *g->leak);
+    g->out = calloc(4 * count, sizeof *g->out);
+    if (!g->ke || !g->q || !g->push || !g->phi || !g->d || !g->leak || !g->out) {
+        cu_msd_free(g);
+        return 1;
+    }
+    return 0;
+}
+
 int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err)
 {
     memset(g, 0, sizeof *g);
@@ -45,20 +64,9 @@ int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err)
         g->n[a] = n + 2 * CU_MSD_MARGIN;
         lo[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * g->n[a] * g->h[a];
     }
-    g->side = cbrt(g->h[0] * g->h[1] * g->h[2]);
     g->lo = v3(lo[0], lo[1], lo[2]);
-    size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
-    g->ke = calloc(count, sizeof *g->ke);
-    g->q = calloc(count, sizeof *g->q);
-    g->push = calloc(count, sizeof *g->push);
-    g->phi = calloc(count, sizeof *g->phi);
-    g->d = calloc(count, sizeof *g->d);
-    g->leak = calloc(count, sizeof *g->leak);
-    g->out = calloc(4 * count, sizeof *g->out);
-    if (!g->ke || !g->q || !g->push || !g->phi || !g->d || !g->leak || !g->out) {
-        cu_msd_free(g);
+    if (grid_alloc(g))
         return cu_fail(err, "ms.grid: out of memory for %dx%dx%d cells", g->n[0], g->n[1], g->n[2]);
-    }
     return 0;
 }
 
@@ -353,12 +361,83 @@ static int relax(cu_msd *g, vec3 u, int most, double tol)
     return most;
 }
 
+/* A fine grid's first solve starts from a coarse one's answer (nested iteration). Gauss-Seidel smooths a cell's
+ * error with its neighbours' and carries it across the grid a cell a sweep, so the sweeps a solve from nothing needs
+ * grow with the cells across: 64 cells took 657 sweeps and 3.2 s on a sphere, 96 stopped at the budget of 1000 (21 s)
+ * short of the tolerance, its far side still dark. A grid of half the cells a side (each the mean of 8) is solved
+ * first, itself from a coarser one past NEST_CELLS, and its fluence, read trilinearly at the fine cells' centres
+ * (with the surface values its empty cells hold), is where the fine solve starts: the fine sweeps then only mend
+ * what the coarse cells could not hold. Out of memory, the solve starts from nothing as before. */
+#define NEST_CELLS 40
+
+static void start_from_coarse(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+{
+    cu_msd c;
+    memset(&c, 0, sizeof c);
+    for (int a = 0; a < 3; a++) {
+        c.n[a] = (g->n[a] + 1) / 2;
+        c.h[a] = 2.0 * g->h[a];
+    }
+    c.lo = g->lo;
+    if (grid_alloc(&c))
+        return;
+    for (int k = 0; k < c.n[2]; k++)
+        for (int j = 0; j < c.n[1]; j++)
+            for (int i = 0; i < c.n[0]; i++) {
+                double sum = 0.0; /* fine cells past an odd grid's end count as empty space */
+                for (int e = 0; e < 8; e++) {
+                    int fi = 2 * i + (e & 1), fj = 2 * j + (e >> 1 & 1), fk = 2 * k + (e >> 2);
+                    if (fi < g->n[0] && fj < g->n[1] && fk < g->n[2])
+                        sum += g->ke[cu_msd_at(g, fi, fj, fk)];
+                }
+                c.ke[cu_msd_at(&c, i, j, k)] = (float)(sum / 8.0);
+            }
+    cu_msd_solve(&c, sun_dir, f, asym, max_sweeps, tol);
+    for (int k = 0; k < g->n[2]; k++)
+        for (int j = 0; j < g->n[1]; j++)
+            for (int i = 0; i < g->n[0]; i++) {
+                int cell = cu_msd_at(g, i, j, k), idx[3] = {i, j, k}, lo[3], hi[3];
+                if (!holds(g, cell))
+                    continue;
+                double t[3];
+                for (int a = 0; a < 3; a++) {
+                    double x = 0.5 * idx[a] - 0.25; /* the fine centre in the coarse cells' centres' index */
+                    lo[a] = (int)floor(x);
+                    t[a] = x - lo[a];
+                    hi[a] = lo[a] + 1 < c.n[a] ? lo[a] + 1 : c.n[a] - 1;
+                    if (lo[a] < 0)
+                        lo[a] = 0;
+                }
+                double phi = 0.0;
+                for (int e = 0; e < 8; e++) {
+                    int ci = e & 1 ? hi[0] : lo[0], cj = e >> 1 & 1 ? hi[1] : lo[1], ck = e >> 2 ? hi[2] : lo[2];
+                    double w = (e & 1 ? t[0] : 1.0 - t[0]) * (e >> 1 & 1 ? t[1] : 1.0 - t[1]) *
+                               (e >> 2 ? t[2] : 1.0 - t[2]);
+                    phi += w * c.out[4 * cu_msd_at(&c, ci, cj, ck)];
+                }
+                g->phi[cell] = (float)phi;
+            }
+    cu_msd_free(&c);
+}
+
+/* Whether no cell holds any fluence yet: a solve from nothing. */
+static int unlit(const cu_msd *g)
+{
+    size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
+    for (size_t c = 0; c < count; c++)
+        if (g->phi[c] != 0.0f)
+            return 0;
+    return 1;
+}
+
 void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
 {
     if (!(f >= 0.0 && f < 1.0))
         f = 0.0;
     if (!(asym > -1.0 && asym < 1.0))
         asym = 0.0;
+    if ((g->n[0] > NEST_CELLS || g->n[1] > NEST_CELLS || g->n[2] > NEST_CELLS) && unlit(g))
+        start_from_coarse(g, sun_dir, f, asym, max_sweeps, tol);
     first_scattering(g, sun_dir, f);
     leak_weights(g);
     double s_tr_per_ke = (1.0 - f) * (1.0 - asym), g3 = 3.0 * fabs(asym);
