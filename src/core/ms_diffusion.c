@@ -12,7 +12,8 @@
  * solve is a Picard iteration: the coefficients are taken from the fluence so far (damped), then the linear problem
  * they make is relaxed (over-relaxed Gauss-Seidel) until it settles, and again, until new coefficients change
  * nothing. Whatever the coefficients do, the last relaxation is of a fixed linear problem, so the answer is settled
- * (a few cells at the edge of a wispy cloud can make the coefficients swing; the number of rounds is bounded). */
+ * (a few cells at the edge of a wispy cloud can make the coefficients swing; the number of rounds is bounded). The
+ * source Q is ms_diffusion_beam.c's. A renderer can run the sweeps a few at a time (cu_msd_solve_continue). */
 #include "ms_diffusion.h"
 #include <stdlib.h>
 #include <string.h>
@@ -82,18 +83,12 @@ void cu_msd_free(cu_msd *g)
     memset(g, 0, sizeof *g);
 }
 
-/* The centre of cell (i, j, k), cloud-local. */
-static vec3 centre(const cu_msd *g, int i, int j, int k)
-{
-    return v3(g->lo.x + (i + 0.5) * g->h[0], g->lo.y + (j + 0.5) * g->h[1], g->lo.z + (k + 0.5) * g->h[2]);
-}
-
 void cu_msd_sample(cu_msd *g, const cu_cloud *cl)
 {
     for (int k = 0; k < g->n[2]; k++)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
-                vec3 c = centre(g, i, j, k);
+                vec3 c = cu_msd_centre(g, i, j, k);
                 double sum = 0.0;
                 for (int s = 0; s < 8; s++) /* the mean of 8 samples at the cell's quarter points */
                     sum += cu_cloud_extinction(cl, v3(c.x + ((s & 1) - 0.5) * 0.5 * g->h[0],
@@ -110,79 +105,6 @@ void cu_msd_sample(cu_msd *g, const cu_cloud *cl)
 static int holds(const cu_msd *g, int c)
 {
     return g->ke[c] * g->side >= CU_MSD_THIN;
-}
-
-/* The optical depth toward the sun from p, a point of cell (i, j, k), to the grid's edge, the cell itself left out:
- * exact over the cells' constant extinctions (a 3D DDA, Amanatides & Woo 1987: the ray's crossings of the cells'
- * planes, in order). A march in steps of half a cell read a step of the cell's own extinction before it left it, and
- * half a step either way at every later boundary: for a sunbeam 30 degrees high through cells of optical depth 0.5
- * the first scattering came out 13 % short, at 5 (a dense cloud) 89 % (test_ms_diffusion.c). */
-static double depth_to_sun(const cu_msd *g, int i, int j, int k, vec3 p, vec3 sun)
-{
-    int idx[3] = {i, j, k}, step[3];
-    double r[3] = {p.x - g->lo.x, p.y - g->lo.y, p.z - g->lo.z}, s[3] = {sun.x, sun.y, sun.z}, next[3], across[3];
-    for (int a = 0; a < 3; a++) {
-        step[a] = s[a] > 0.0 ? 1 : -1;
-        if (fabs(s[a]) < 1e-12) {
-            next[a] = across[a] = HUGE_VAL; /* never crosses this axis's planes */
-            continue;
-        }
-        double plane = (idx[a] + (s[a] > 0.0)) * g->h[a];
-        next[a] = fmax((plane - r[a]) / s[a], 0.0);
-        across[a] = g->h[a] / fabs(s[a]);
-    }
-    double tau = 0.0, t = 0.0;
-    for (int own = 1;; own = 0) {
-        int a = next[0] <= next[1] && next[0] <= next[2] ? 0 : next[1] <= next[2] ? 1 : 2;
-        if (next[a] == HUGE_VAL)
-            break;
-        if (!own)
-            tau += g->ke[cu_msd_at(g, idx[0], idx[1], idx[2])] * (next[a] - t);
-        t = next[a];
-        next[a] += across[a];
-        idx[a] += step[a];
-        if (idx[a] < 0 || idx[a] >= g->n[a])
-            break;
-    }
-    return tau;
-}
-
-/* The first scattering, per cell: the power the sunbeam loses in it over its volume. The beam comes in through the
- * cell's faces toward the sun, each by its area across the beam, |s_a| times the face's; it crosses the cell along a
- * mean chord l (the cell's volume over that cross-section), so the cell takes T' (1 - e^-(1-f) k_e l) / l per
- * volume, T' the beam's delta-M transmittance where it comes in: at each of those faces' centres (depth_to_sun),
- * weighted by its share of the cross-section. One transmittance for the whole cross-section (the one half a chord
- * toward the sun of the centre) gave the faces that the beam reaches only through the neighbouring cell, the side of
- * a cell in a level layer under a low sun, the light that the neighbour had already taken: 12 % more light than came
- * in for a sunbeam 30 degrees high through cells of optical depth 0.5, 35 % through thick ones (test_ms_diffusion.c).
- * A cell is optically thick (a cumulus's mean free path is a few metres, a cell tens), so the source at the cell's
- * centre, (1 - f) k_e e^-tau, would lose most of the light. */
-static void first_scattering(cu_msd *g, vec3 sun, double f)
-{
-    double s[3] = {sun.x, sun.y, sun.z}, share[3], across = 0.0;
-    for (int a = 0; a < 3; a++) {
-        share[a] = fabs(s[a]) * g->h[(a + 1) % 3] * g->h[(a + 2) % 3];
-        across += share[a];
-    }
-    double chord = g->h[0] * g->h[1] * g->h[2] / across;
-    for (int k = 0; k < g->n[2]; k++)
-        for (int j = 0; j < g->n[1]; j++)
-            for (int i = 0; i < g->n[0]; i++) {
-                int c = cu_msd_at(g, i, j, k);
-                g->q[c] = 0.0f;
-                if (g->ke[c] <= 0.0f)
-                    continue;
-                vec3 o = centre(g, i, j, k);
-                double in = 0.0;
-                for (int a = 0; a < 3; a++) {
-                    if (share[a] <= 0.0)
-                        continue;
-                    double face[3] = {o.x, o.y, o.z};
-                    face[a] += (s[a] > 0.0 ? 0.5 : -0.5) * g->h[a]; /* the face toward the sun */
-                    in += share[a] * exp(-(1.0 - f) * depth_to_sun(g, i, j, k, v3(face[0], face[1], face[2]), sun));
-                }
-                g->q[c] = (float)(in / across * (1.0 - exp(-(1.0 - f) * g->ke[c] * chord)) / chord);
-            }
 }
 
 /* Whether cell (i, j, k) holds cloud (cells of empty space, and beyond the grid, do not: the cloud's surface). */
@@ -345,20 +267,15 @@ static void surface_values(cu_msd *g)
             }
 }
 
-/* Relaxes the linear problem of the present coefficients until a sweep changes at most tol of the summed fluence, or
- * `most` sweeps; returns the sweeps taken. */
-static int relax(cu_msd *g, vec3 u, int most, double tol)
+/* One sweep of the linear problem of the present coefficients; g->change becomes its summed change relative to the
+ * summed fluence. */
+static void relax_once(cu_msd *g)
 {
     size_t count = (size_t)g->n[0] * g->n[1] * g->n[2];
-    for (int s = 1; s <= most; s++) {
-        double change = sweep(g, u), total = 0.0;
-        for (size_t c = 0; c < count; c++)
-            total += g->phi[c];
-        g->change = total > 0.0 ? change / total : 0.0;
-        if (g->change <= tol)
-            return s;
-    }
-    return most;
+    double change = sweep(g, g->u), total = 0.0;
+    for (size_t c = 0; c < count; c++)
+        total += g->phi[c];
+    g->change = total > 0.0 ? change / total : 0.0;
 }
 
 /* A fine grid's first solve starts from a coarse one's answer (nested iteration). Gauss-Seidel smooths a cell's
@@ -430,31 +347,9 @@ static int unlit(const cu_msd *g)
     return 1;
 }
 
-void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+/* The fluence and flux into out, the texture's four channels. */
+static void finish(cu_msd *g)
 {
-    if (!(f >= 0.0 && f < 1.0))
-        f = 0.0;
-    if (!(asym > -1.0 && asym < 1.0))
-        asym = 0.0;
-    if ((g->n[0] > NEST_CELLS || g->n[1] > NEST_CELLS || g->n[2] > NEST_CELLS) && unlit(g))
-        start_from_coarse(g, sun_dir, f, asym, max_sweeps, tol);
-    first_scattering(g, sun_dir, f);
-    leak_weights(g);
-    double s_tr_per_ke = (1.0 - f) * (1.0 - asym), g3 = 3.0 * fabs(asym);
-    vec3 u = v3_scale(sun_dir, asym < 0.0 ? 1.0 : -1.0); /* the beam travels away from the sun */
-    g->sweeps = 0;
-    g->change = 0.0;
-    /* Picard rounds: new coefficients, then relax; done when a round's relaxation settles within SETTLED sweeps (the
-     * new coefficients hardly moved the fluence), or at the last round, whose relaxation runs to the end of the
-     * budget */
-    for (int round = 0; round < ROUNDS && g->sweeps < max_sweeps; round++) {
-        coefficients(g, s_tr_per_ke, g3);
-        int last = round == ROUNDS - 1, left = max_sweeps - g->sweeps;
-        int n = relax(g, u, last ? left : (left < ROUND_SWEEPS ? left : ROUND_SWEEPS), tol);
-        g->sweeps += n;
-        if (n <= SETTLED && g->change <= tol)
-            break;
-    }
     for (int k = 0; k < g->n[2]; k++)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
@@ -463,11 +358,68 @@ void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps
                 o[0] = o[1] = o[2] = o[3] = 0.0f;
                 if (!holds(g, c))
                     continue;
-                vec3 F = v3_add(v3_scale(gradient(g, i, j, k), -g->d[c]), v3_scale(u, g->push[c]));
+                vec3 F = v3_add(v3_scale(gradient(g, i, j, k), -g->d[c]), v3_scale(g->u, g->push[c]));
                 o[0] = g->phi[c];
                 o[1] = (float)F.x;
                 o[2] = (float)F.y;
                 o[3] = (float)F.z;
             }
     surface_values(g);
+    g->solving = 0;
+}
+
+void cu_msd_solve_begin(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+{
+    if (!(f >= 0.0 && f < 1.0))
+        f = 0.0;
+    if (!(asym > -1.0 && asym < 1.0))
+        asym = 0.0;
+    if ((g->n[0] > NEST_CELLS || g->n[1] > NEST_CELLS || g->n[2] > NEST_CELLS) && unlit(g))
+        start_from_coarse(g, sun_dir, f, asym, max_sweeps, tol);
+    cu_msd_first_scattering(g, sun_dir, f);
+    leak_weights(g);
+    g->s_tr_per_ke = (1.0 - f) * (1.0 - asym);
+    g->g3 = 3.0 * fabs(asym);
+    g->u = v3_scale(sun_dir, asym < 0.0 ? 1.0 : -1.0); /* the beam travels away from the sun */
+    g->max_sweeps = max_sweeps;
+    g->tol = tol;
+    g->sweeps = g->round = g->in_round = g->round_most = 0;
+    g->change = 0.0;
+    g->solving = 1;
+    if (max_sweeps <= 0)
+        finish(g);
+}
+
+/* Picard rounds: new coefficients, then relax until a sweep changes at most tol of the fluence or the round's
+ * sweeps are spent; done when a round's relaxation settles within SETTLED sweeps (the new coefficients hardly moved
+ * the fluence), or after the last round, whose relaxation runs to the end of the budget. */
+int cu_msd_solve_continue(cu_msd *g, int sweeps)
+{
+    int ran = 0;
+    while (g->solving && ran < sweeps) {
+        if (g->round_most == 0) {
+            coefficients(g, g->s_tr_per_ke, g->g3);
+            int last = g->round == ROUNDS - 1, left = g->max_sweeps - g->sweeps;
+            g->round_most = last || left < ROUND_SWEEPS ? left : ROUND_SWEEPS;
+        }
+        relax_once(g);
+        ran++;
+        g->sweeps++;
+        g->in_round++;
+        if (g->change > g->tol && g->in_round < g->round_most)
+            continue;
+        int settled = g->in_round <= SETTLED && g->change <= g->tol;
+        g->round++;
+        g->in_round = g->round_most = 0;
+        if (settled || g->round >= ROUNDS || g->sweeps >= g->max_sweeps)
+            finish(g);
+    }
+    return ran;
+}
+
+void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+{
+    cu_msd_solve_begin(g, sun_dir, f, asym, max_sweeps, tol);
+    while (g->solving)
+        cu_msd_solve_continue(g, max_sweeps);
 }

@@ -29,6 +29,13 @@ typedef struct cu_msd {
     float *out;           /* 4 per cell: fluence and flux (x, y, z) per unit sun irradiance: the texture */
     int sweeps;           /* the last solve's relaxation sweeps (all rounds) */
     double change;        /* its last sweep's summed change relative to the summed fluence */
+    /* a solve under way (cu_msd_solve_begin, cu_msd_solve_continue) */
+    int solving;          /* 1 until it is done and out filled */
+    int round, in_round;  /* its Picard round, and the sweeps taken in it */
+    int round_most;       /* the most that round may take; 0 before its coefficients are taken */
+    int max_sweeps;
+    double tol, s_tr_per_ke, g3;
+    vec3 u;               /* the way the push goes */
 } cu_msd;
 
 /* A grid over cloud cl's bounds and CU_MSD_MARGIN cells about them, `cells` along its longest side
@@ -43,9 +50,23 @@ void cu_msd_sample(cu_msd *g, const cu_cloud *cl);
  * present fluence (a sun that moved a little converges in a few sweeps), until a sweep changes the fluence by at
  * most tol of its sum (L1) or after max_sweeps; fills out. */
 void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol);
+/* The same solve in steps, so that a renderer can spread it over frames (the answer is bit for bit the same):
+ * _begin does what comes before the sweeps (the sunbeam's first scattering, the surface's leak weights, for a fine
+ * grid with no light yet the coarse grid's solve) and sets g->solving; each _continue runs at most `sweeps` more
+ * relaxation sweeps and returns how many it ran; when the solve is done it fills out and clears g->solving. */
+void cu_msd_solve_begin(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol);
+int cu_msd_solve_continue(cu_msd *g, int sweeps);
+/* The solve's source (ms_diffusion_beam.c): fills g->q, per cell and per unit sun irradiance the power the delta-M
+ * sunbeam (toward the sun sun, unit, cloud-local; f the chopped peak) loses in it over its volume. */
+void cu_msd_first_scattering(cu_msd *g, vec3 sun, double f);
 /* Index of cell (i, j, k). */
 static inline int cu_msd_at(const cu_msd *g, int i, int j, int k)
 {
     return (k * g->n[1] + j) * g->n[0] + i;
+}
+/* The centre of cell (i, j, k), cloud-local. */
+static inline vec3 cu_msd_centre(const cu_msd *g, int i, int j, int k)
+{
+    return v3(g->lo.x + (i + 0.5) * g->h[0], g->lo.y + (j + 0.5) * g->h[1], g->lo.z + (k + 0.5) * g->h[2]);
 }
 #endif

@@ -242,7 +242,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         return 1;
     /* Everything seen from the sun first (it draws into the maps' own targets). */
     int budget = 4;
-    r->msd_allowance = 1;
+    r->msd_work = 1000L * r->scene.ms_frame_work;
     for (int j = visible - 1; j >= 0; j--)
         if (cu_frame_cloud_maps(r, &r->clouds.slot[r->order[j]], &budget, err))
             return 1;

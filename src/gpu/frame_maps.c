@@ -44,7 +44,7 @@ static double bind_mature(cu_renderer *r, cu_cloud_slot *sl, vec3 sun)
 }
 
 /* The whole of cloud sl's maps, now, for the sun now (and the zenith's when the noise moved on). */
-static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, int urgent, cu_error *err)
+static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *err)
 {
     cu_gpu_scene *ctx = &r->ctx;
     int resample = boiled || !sl->maps_valid; /* the grid's density: a new look, or the noise boiled on */
@@ -62,7 +62,7 @@ static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, int urgen
         cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, NULL, &sl->slab, 1);
     sl->zenith_valid = 1;
     int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
-             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, urgent ? NULL : &r->msd_allowance,
+             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, &r->msd_work,
                                 err);
     sl->factor = f;
     return rc;
@@ -139,7 +139,7 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
         r->maps_deferred = 1; /* the sun or the noise moved on while the bands were drawn: more to come */
     cu_frame_bind_cloud(r, sl); /* its new maps, for the diffusion grid */
     int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
-             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, sl->next_zenith, &r->msd_allowance, err);
+             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, sl->next_zenith, &r->msd_work, err);
     sl->factor = f;
     return rc;
 }
@@ -162,14 +162,14 @@ int cu_frame_cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error
     int jumped = r->frame_sun_valid && cu_sun_apart(r->frame_sun, sun, CU_SUN_MAP_JUMP);
     int lagged = cu_sun_apart(sl->maps_sun, sun, cu_sun_map_lag(r->scene.sun_map_frames));
     if (!sl->maps_valid || !sl->zenith_valid || jumped || lagged)
-        return remake_whole(r, sl, boiled, 1, err);
+        return remake_whole(r, sl, boiled, err);
     if (!boiled && !crept && sl->next_band == 0) /* up to date; a grid a busier frame left behind catches up */
         return ctx->ms_mode == CU_MS_DIFFUSION &&
-               cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, 0, &r->msd_allowance, err);
+               cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, 0, &r->msd_work, err);
     if (*budget <= 0) {
         r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
         return 0;
     }
     (*budget)--;
-    return r->scene.sun_map_frames > 1 ? remake_band(r, sl, boiled, err) : remake_whole(r, sl, boiled, 0, err);
+    return r->scene.sun_map_frames > 1 ? remake_band(r, sl, boiled, err) : remake_whole(r, sl, boiled, err);
 }

@@ -29,8 +29,15 @@ static void upload(const cu_gpu_scene *ctx, cu_cloud_msd *m)
     gl->ActiveTexture(GL_TEXTURE0);
 }
 
+static double ms_since(const struct timespec *t0)
+{
+    struct timespec t1;
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    return 1e3 * (t1.tv_sec - t0->tv_sec) + 1e-6 * (t1.tv_nsec - t0->tv_nsec);
+}
+
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
-                       int *allowance, cu_error *err)
+                       long *work, cu_error *err)
 {
     if (!m->grid.ke) {
         if (cu_msd_init(&m->grid, cl, ctx->scene->ms_grid, err))
@@ -38,27 +45,42 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
         resample = 1;
     }
     m->resample |= resample || !m->sampled;
-    if (m->solved && !m->resample && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
-        return 0;
-    if (m->solved && allowance) {
-        if (*allowance <= 0)
-            return 0; /* a later frame's: until then the cloud keeps the light it has, at most a few tenths off */
-        (*allowance)--;
-    }
-    if (m->resample) {
-        cu_msd_sample(&m->grid, cl);
-        m->sampled = 1;
-        m->resample = 0;
-    }
-    struct timespec t0, t1;
+    if (!m->solved)
+        work = NULL; /* nothing to show until its first solve is done: whole, now */
+    struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    cu_msd_solve(&m->grid, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    m->sun = sun;
+    if (!m->grid.solving) {
+        if (m->solved && !m->resample && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
+            return 0;
+        if (work && *work <= 0)
+            return 0; /* a later frame's: until then the cloud keeps the light it has */
+        if (m->resample) { /* never while a solve is under way: its coefficients come from the density */
+            cu_msd_sample(&m->grid, cl);
+            m->sampled = 1;
+            m->resample = 0;
+        }
+        cu_msd_solve_begin(&m->grid, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
+        m->solving_sun = sun;
+        m->solve_frames = 0;
+        m->solve_ms = 0.0;
+    }
+    long cells = (long)m->grid.n[0] * m->grid.n[1] * m->grid.n[2];
+    int sweeps = MSD_MOST_SWEEPS;
+    if (work && *work / cells < sweeps)
+        sweeps = *work / cells > 1 ? (int)(*work / cells) : 1;
+    int ran = cu_msd_solve_continue(&m->grid, sweeps);
+    if (work)
+        *work -= ran * cells;
+    m->solve_frames++;
+    m->solve_ms += ms_since(&t0);
+    if (m->grid.solving)
+        return 0;
+    m->sun = m->solving_sun;
     m->solved = 1;
-    cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: %dx%dx%d cells of %.0fx%.0fx%.0f m, %d sweeps, last change %.1e, "
-               "%.0f ms on the CPU", m->grid.n[0], m->grid.n[1], m->grid.n[2], m->grid.h[0], m->grid.h[1], m->grid.h[2],
-               m->grid.sweeps, m->grid.change, 1e3 * (t1.tv_sec - t0.tv_sec) + 1e-6 * (t1.tv_nsec - t0.tv_nsec));
+    cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: %dx%dx%d cells of %.0fx%.0fx%.0f m, %d sweeps in %d frame%s, "
+               "last change %.1e, %.0f ms on the CPU", m->grid.n[0], m->grid.n[1], m->grid.n[2], m->grid.h[0],
+               m->grid.h[1], m->grid.h[2], m->grid.sweeps, m->solve_frames, m->solve_frames == 1 ? "" : "s",
+               m->grid.change, m->solve_ms);
     upload(ctx, m);
     return 0;
 }

@@ -14,17 +14,23 @@ typedef struct cu_cloud_msd {
     GLuint tex;               /* RGBA16F: fluence and flux per unit sun irradiance */
     int sampled;              /* the grid holds the cloud's density */
     int resample;             /* ... of an earlier look: sample again at the next solve */
-    int solved;               /* its light has been solved, for sun */
+    int solved;               /* its light has been solved, for sun (the texture's) */
     vec3 sun;
+    vec3 solving_sun;         /* the sun of the solve under way (grid.solving), over as many frames as it takes */
+    int solve_frames;         /* the frames it has taken so far */
+    double solve_ms;          /* and their CPU time */
 } cu_cloud_msd;
 
 /* Brings cloud cl's grid up to date (cl at its mature density, as its maps are made): samples its density again
  * when resample is set (now or at an earlier call) or it has none, solves when it was resampled or the sun (world =
- * the cloud's frame's axes) turned past CU_MSD_SUN_STEP, and uploads what changed. A grid never solved is solved at
- * once; any other solve takes one of *allowance (NULL: no limit) and waits for a later call when none is left, so a
- * frame in which many clouds' maps follow the sun pays for one solve, not for all (each is 0.1-0.3 s of CPU). */
+ * the cloud's frame's axes) turned past CU_MSD_SUN_STEP, and uploads the answer. A grid never solved is solved whole
+ * at once, and so is every solve when work is NULL. Otherwise a solve is spread over frames: each call advances it
+ * by at most *work cell updates (a cell in a sweep; at least one sweep) and takes them off *work, and until it is
+ * done the cloud keeps the light it has (a few tenths off at most, and bit for bit the same answer in the end). A
+ * frame whose work is spent starts no solve. So a frame pays a bounded CPU time for the grids however many clouds'
+ * maps follow the sun or change their look: a whole solve is 10-100 ms of CPU at 32 cells, 0.1-1 s at 64. */
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
-                       int *allowance, cu_error *err);
+                       long *work, cu_error *err);
 /* Points the frame context at m's texture and box (what cloud.frag reads for the cloud being drawn). */
 void cu_pass_msd_bind(cu_gpu_scene *ctx, const cu_cloud_msd *m);
 void cu_pass_msd_free(cu_cloud_msd *m, const cu_gl *gl);

@@ -92,7 +92,7 @@ struct cu_renderer {
         unsigned depth_texture;
     } last_key;
     int settle_left, maps_deferred, sparse_grid, drawn;
-    int msd_allowance;         /* ms.mode = diffusion: grid solves left this frame besides first ones (pass_msd.h) */
+    long msd_work;             /* ms.mode = diffusion: cell updates left this frame for grids solved again (pass_msd.h) */
 
     int sun_dirty;        /* the sun moved or the scene changed: the energy closure is measured again */
 };

@@ -192,6 +192,43 @@ static void test_warm_start(void **st)
     cu_msd_free(&fresh);
 }
 
+/* A solve spread over frames (cu_msd_solve_begin, then cu_msd_solve_continue a few sweeps at a time) is the one-shot
+ * solve bit for bit, from nothing and warm (the sun moved half a degree), whatever the slices; no call runs more
+ * sweeps than it was given, and a slice shorter than the solve leaves it under way. */
+static void test_solve_in_steps(void **st)
+{
+    (void)st;
+    static const int slices[] = {1, 3, 17, 40, 41};
+    double a = 0.5 * CU_PI / 180.0;
+    vec3 suns[2] = {v3(0, 1, 0), v3(sin(a), cos(a), 0)};
+    for (int n = 0; n < 5; n++) {
+        cu_msd whole, g;
+        sphere(&whole, 16);
+        sphere(&g, 16);
+        size_t count = (size_t)g.n[0] * g.n[1] * g.n[2];
+        for (int s = 0; s < 2; s++) { /* from nothing, then warm */
+            cu_msd_solve(&whole, suns[s], 0.73, 0.46, 1000, 1e-5);
+            cu_msd_solve_begin(&g, suns[s], 0.73, 0.46, 1000, 1e-5);
+            int calls = 0, total = 0;
+            while (g.solving) {
+                int ran = cu_msd_solve_continue(&g, slices[n]);
+                assert_true(ran >= 1 && ran <= slices[n]);
+                total += ran;
+                calls++;
+            }
+            if (n == 0)
+                print_message("in steps: %d sweeps %s\n", g.sweeps, s ? "after the sun moved" : "from nothing");
+            assert_int_equal(total, g.sweeps);
+            assert_int_equal(g.sweeps, whole.sweeps);
+            assert_int_equal(calls, (g.sweeps + slices[n] - 1) / slices[n]); /* a slice short of the end ran whole */
+            assert_memory_equal(g.phi, whole.phi, count * sizeof *g.phi);
+            assert_memory_equal(g.out, whole.out, 4 * count * sizeof *g.out);
+        }
+        cu_msd_free(&g);
+        cu_msd_free(&whole);
+    }
+}
+
 /* A fine grid's first solve starts from a coarse grid's answer (ms_diffusion.c start_from_coarse): a sphere of 96
  * cells a side settles within the renderer's budget of 1000 sweeps (from nothing it stopped at 1000, short of the
  * tolerance), and its light is the light of a solve that started from it and ran twice as long again. */
@@ -390,6 +427,7 @@ int main(void)
         cmocka_unit_test(test_slanted_beam),
         cmocka_unit_test(test_sphere_symmetry_and_gradient),
         cmocka_unit_test(test_warm_start),
+        cmocka_unit_test(test_solve_in_steps),
         cmocka_unit_test(test_fine_grid_converges),
         cmocka_unit_test(test_leak_weights),
         cmocka_unit_test(test_leak_weights_flat),
