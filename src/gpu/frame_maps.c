@@ -43,6 +43,18 @@ static double bind_mature(cu_renderer *r, cu_cloud_slot *sl, vec3 sun)
     return f;
 }
 
+/* ms.mode = diffusion: cloud sl's grid for the sun of its maps, within the frame's work (pass_msd.h); a solve left for
+ * later frames keeps the picture from settling, so that a still camera's frames go on until it is done. */
+static int msd_update(cu_renderer *r, cu_cloud_slot *sl, int resample, cu_error *err)
+{
+    if (r->ctx.ms_mode != CU_MS_DIFFUSION)
+        return 0;
+    int rc = cu_pass_msd_update(&r->ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, &r->msd_work, err);
+    if (sl->msd.pending)
+        r->maps_deferred = 1;
+    return rc;
+}
+
 /* The whole of cloud sl's maps, now, for the sun now (and the zenith's when the noise moved on). */
 static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *err)
 {
@@ -61,9 +73,7 @@ static int remake_whole(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error 
     if (!sl->zenith_valid)
         cu_pass_slab_update(&r->pass_slab, ctx, 1, sl->slab_map, NULL, &sl->slab, 1);
     sl->zenith_valid = 1;
-    int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
-             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, &r->msd_work,
-                                err);
+    int rc = msd_update(r, sl, resample, err);
     sl->factor = f;
     return rc;
 }
@@ -138,8 +148,7 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
         v3_len(v3_sub(sl->boil, sl->maps_boil)) > CU_BOIL_STEP)
         r->maps_deferred = 1; /* the sun or the noise moved on while the bands were drawn: more to come */
     cu_frame_bind_cloud(r, sl); /* its new maps, for the diffusion grid */
-    int rc = ctx->ms_mode == CU_MS_DIFFUSION &&
-             cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, sl->next_zenith, &r->msd_work, err);
+    int rc = msd_update(r, sl, sl->next_zenith, err);
     sl->factor = f;
     return rc;
 }
@@ -164,8 +173,7 @@ int cu_frame_cloud_maps(cu_renderer *r, cu_cloud_slot *sl, int *budget, cu_error
     if (!sl->maps_valid || !sl->zenith_valid || jumped || lagged)
         return remake_whole(r, sl, boiled, err);
     if (!boiled && !crept && sl->next_band == 0) /* up to date; a grid a busier frame left behind catches up */
-        return ctx->ms_mode == CU_MS_DIFFUSION &&
-               cu_pass_msd_update(ctx, &sl->msd, &sl->cloud, sl->maps_sun, 0, &r->msd_work, err);
+        return msd_update(r, sl, 0, err);
     if (*budget <= 0) {
         r->maps_deferred = 1; /* its turn comes in a later frame: the picture has not settled */
         return 0;

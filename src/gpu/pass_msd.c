@@ -49,9 +49,11 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
         work = NULL; /* nothing to show until its first solve is done: whole, now */
     struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    m->pending = 0;
     if (!m->grid.solving) {
         if (m->solved && !m->resample && v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
             return 0;
+        m->pending = 1;
         if (work && *work <= 0)
             return 0; /* a later frame's: until then the cloud keeps the light it has */
         if (m->resample) { /* never while a solve is under way: its coefficients come from the density */
@@ -73,6 +75,7 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
         *work -= ran * cells;
     m->solve_frames++;
     m->solve_ms += ms_since(&t0);
+    m->pending = m->grid.solving;
     if (m->grid.solving)
         return 0;
     m->sun = m->solving_sun;

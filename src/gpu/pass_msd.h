@@ -19,6 +19,7 @@ typedef struct cu_cloud_msd {
     vec3 solving_sun;         /* the sun of the solve under way (grid.solving), over as many frames as it takes */
     int solve_frames;         /* the frames it has taken so far */
     double solve_ms;          /* and their CPU time */
+    int pending;              /* after cu_pass_msd_update: its light is not yet what was asked (a later frame's) */
 } cu_cloud_msd;
 
 /* Brings cloud cl's grid up to date (cl at its mature density, as its maps are made): samples its density again

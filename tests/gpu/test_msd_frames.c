@@ -1,0 +1,90 @@
+/* tests/gpu/test_msd_frames.c: ms.mode = diffusion's grids solved again over frames (ms.frame_work; src/gpu/
+ * pass_msd.c): after the sun turns past the grid's half degree, each frame runs only its work of the re-solve (a
+ * sweep a frame at the least), the cloud keeps the light it has until the solve is done (the frames in between are
+ * the same picture), the picture does not settle before (cu_renderer_settled: a still camera's frames go on until it
+ * is done), and it settles to the picture of the same re-solve run in one frame, bit for bit. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "render_util.h"
+#include "renderer.h"
+
+#define W 48
+#define H 36
+#define NPX ((size_t)W * H * 3)
+#define EL 30.0
+#define AZ 135.0
+
+/* The cumulus with its grid solved, then the sun turned 0.6 degrees: frames until the picture settles (at most
+ * `most`), the last one in out; *sweeps the re-solve's sweeps. Every frame but the last is checked on the way. */
+static int turn_and_settle(const char *work, int most, float *out, int *sweeps)
+{
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    const char *sets[] = {"ms.mode=diffusion", "quality.sun_map_frames=1", "sun.elevation=30", "sun.azimuth=135",
+                          work, NULL};
+    if (tr_render(&c, "scenes/cumulus.scene", sets))
+        fail_msg("%s", c.err);
+    const cu_cloud_msd *m = &c.r->clouds.slot[0].msd;
+    assert_int_equal(m->solved, 1); /* the first solve is whole, in the first frame */
+    assert_int_equal(m->grid.solving, 0);
+    assert_int_equal(cu_renderer_settled(c.r), 1);
+    cu_error e;
+    if (cu_renderer_set_sun(c.r, EL, AZ + 0.6, &e))
+        fail_msg("%s", e.msg);
+    float *prev = malloc(sizeof(float) * NPX);
+    assert_non_null(prev);
+    int frames = 0, last_sweeps = 0;
+    for (; frames < most; frames++) {
+        if (tr_render_again(&c))
+            fail_msg("%s", c.err);
+        tr_read_rgbf(&c, out);
+        if (cu_renderer_settled(c.r))
+            break;
+        assert_int_equal(m->grid.solving, 1); /* only the grid keeps it from settling */
+        if (frames > 0) {
+            assert_int_equal(m->grid.sweeps, last_sweeps + 1); /* ms.frame_work = 1: a sweep a frame */
+            assert_memory_equal(out, prev, sizeof(float) * NPX); /* the cloud keeps its light meanwhile */
+        }
+        last_sweeps = m->grid.sweeps;
+        memcpy(prev, out, sizeof(float) * NPX);
+    }
+    assert_int_equal(m->grid.solving, 0);
+    *sweeps = m->grid.sweeps;
+    free(prev);
+    tr_close(&c);
+    return frames + 1;
+}
+
+static void test_resolve_over_frames(void **st)
+{
+    (void)st;
+    float *spread = malloc(sizeof(float) * NPX), *whole = malloc(sizeof(float) * NPX);
+    assert_non_null(spread);
+    assert_non_null(whole);
+    int sweeps_spread, sweeps_whole;
+    int frames = turn_and_settle("ms.frame_work=1", 2000, spread, &sweeps_spread);
+    int frames_whole = turn_and_settle("ms.frame_work=1000000", 5, whole, &sweeps_whole);
+    print_message("the sun turned 0.6 degrees: the re-solve took %d frames at a sweep a frame (%d sweeps), %d at no "
+                  "limit (%d sweeps)\n", frames, sweeps_spread, frames_whole, sweeps_whole);
+    assert_int_equal(frames_whole, 1);
+    assert_int_equal(sweeps_spread, sweeps_whole);
+    assert_int_equal(frames, sweeps_spread); /* settled in the frame of its last sweep */
+    assert_true(frames > 5);
+    assert_memory_equal(spread, whole, sizeof(float) * NPX);
+    free(spread);
+    free(whole);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_resolve_over_frames),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
