@@ -85,7 +85,12 @@ void cu_msd_free(cu_msd *g)
 
 void cu_msd_sample(cu_msd *g, const cu_cloud *cl)
 {
-    for (int k = 0; k < g->n[2]; k++)
+    cu_msd_sample_slices(g, cl, 0, g->n[2]);
+}
+
+void cu_msd_sample_slices(cu_msd *g, const cu_cloud *cl, int k0, int k1)
+{
+    for (int k = k0 < 0 ? 0 : k0; k < k1 && k < g->n[2]; k++)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
                 vec3 c = cu_msd_centre(g, i, j, k);
@@ -287,29 +292,32 @@ static void relax_once(cu_msd *g)
  * what the coarse cells could not hold. Out of memory, the solve starts from nothing as before. */
 #define NEST_CELLS 40
 
-static void start_from_coarse(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+int cu_msd_coarsen(const cu_msd *g, cu_msd *c)
 {
-    cu_msd c;
-    memset(&c, 0, sizeof c);
+    memset(c, 0, sizeof *c);
     for (int a = 0; a < 3; a++) {
-        c.n[a] = (g->n[a] + 1) / 2;
-        c.h[a] = 2.0 * g->h[a];
+        c->n[a] = (g->n[a] + 1) / 2;
+        c->h[a] = 2.0 * g->h[a];
     }
-    c.lo = g->lo;
-    if (grid_alloc(&c))
-        return;
-    for (int k = 0; k < c.n[2]; k++)
-        for (int j = 0; j < c.n[1]; j++)
-            for (int i = 0; i < c.n[0]; i++) {
+    c->lo = g->lo;
+    if (grid_alloc(c))
+        return 1;
+    for (int k = 0; k < c->n[2]; k++)
+        for (int j = 0; j < c->n[1]; j++)
+            for (int i = 0; i < c->n[0]; i++) {
                 double sum = 0.0; /* fine cells past an odd grid's end count as empty space */
                 for (int e = 0; e < 8; e++) {
                     int fi = 2 * i + (e & 1), fj = 2 * j + (e >> 1 & 1), fk = 2 * k + (e >> 2);
                     if (fi < g->n[0] && fj < g->n[1] && fk < g->n[2])
                         sum += g->ke[cu_msd_at(g, fi, fj, fk)];
                 }
-                c.ke[cu_msd_at(&c, i, j, k)] = (float)(sum / 8.0);
+                c->ke[cu_msd_at(c, i, j, k)] = (float)(sum / 8.0);
             }
-    cu_msd_solve(&c, sun_dir, f, asym, max_sweeps, tol);
+    return 0;
+}
+
+void cu_msd_start_from(cu_msd *g, const cu_msd *c)
+{
     for (int k = 0; k < g->n[2]; k++)
         for (int j = 0; j < g->n[1]; j++)
             for (int i = 0; i < g->n[0]; i++) {
@@ -321,7 +329,7 @@ static void start_from_coarse(cu_msd *g, vec3 sun_dir, double f, double asym, in
                     double x = 0.5 * idx[a] - 0.25; /* the fine centre in the coarse cells' centres' index */
                     lo[a] = (int)floor(x);
                     t[a] = x - lo[a];
-                    hi[a] = lo[a] + 1 < c.n[a] ? lo[a] + 1 : c.n[a] - 1;
+                    hi[a] = lo[a] + 1 < c->n[a] ? lo[a] + 1 : c->n[a] - 1;
                     if (lo[a] < 0)
                         lo[a] = 0;
                 }
@@ -330,10 +338,19 @@ static void start_from_coarse(cu_msd *g, vec3 sun_dir, double f, double asym, in
                     int ci = e & 1 ? hi[0] : lo[0], cj = e >> 1 & 1 ? hi[1] : lo[1], ck = e >> 2 ? hi[2] : lo[2];
                     double w = (e & 1 ? t[0] : 1.0 - t[0]) * (e >> 1 & 1 ? t[1] : 1.0 - t[1]) *
                                (e >> 2 ? t[2] : 1.0 - t[2]);
-                    phi += w * c.out[4 * cu_msd_at(&c, ci, cj, ck)];
+                    phi += w * c->out[4 * cu_msd_at(c, ci, cj, ck)];
                 }
                 g->phi[cell] = (float)phi;
             }
+}
+
+static void start_from_coarse(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol)
+{
+    cu_msd c;
+    if (cu_msd_coarsen(g, &c))
+        return;
+    cu_msd_solve(&c, sun_dir, f, asym, max_sweeps, tol);
+    cu_msd_start_from(g, &c);
     cu_msd_free(&c);
 }
 

@@ -45,6 +45,9 @@ int cu_msd_init(cu_msd *g, const cu_cloud *cl, int cells, cu_error *err);
 void cu_msd_free(cu_msd *g);
 /* The cloud's extinction into the cells (again whenever its density changes). */
 void cu_msd_sample(cu_msd *g, const cu_cloud *cl);
+/* The same for the cells of slices k0 <= k < k1 only (a renderer spreads the sampling over frames; no solve may run
+ * in between). */
+void cu_msd_sample_slices(cu_msd *g, const cu_cloud *cl, int k0, int k1);
 /* Solves for the sun toward sun_dir (cloud-local, unit, pointing at the sun) with the phase function's chopped
  * peak f and the asymmetry g of the rest (delta-M; f = 0 and g for Henyey-Greenstein), starting from the grid's
  * present fluence (a sun that moved a little converges in a few sweeps), until a sweep changes the fluence by at
@@ -56,6 +59,13 @@ void cu_msd_solve(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps
  * relaxation sweeps and returns how many it ran; when the solve is done it fills out and clears g->solving. */
 void cu_msd_solve_begin(cu_msd *g, vec3 sun_dir, double f, double asym, int max_sweeps, double tol);
 int cu_msd_solve_continue(cu_msd *g, int sweeps);
+/* Nested grids (a fine grid's first solve from a coarse one's answer, ms_diffusion.c): c becomes the grid of half
+ * the cells a side over g's box (each cell the mean of the 8 of g's it covers; past an odd grid's end, empty space),
+ * its fluence zero; 1 (and nothing held) when out of memory. */
+int cu_msd_coarsen(const cu_msd *g, cu_msd *c);
+/* g's fluence, where g holds cloud, from c's answer (c coarsened from g, then solved), read trilinearly at g's cells'
+ * centres with the surface values c's empty cells hold: where a solve of g then starts. */
+void cu_msd_start_from(cu_msd *g, const cu_msd *c);
 /* The solve's source (ms_diffusion_beam.c): fills g->q, per cell and per unit sun irradiance the power the delta-M
  * sunbeam (toward the sun sun, unit, cloud-local; f the chopped peak) loses in it over its volume. */
 void cu_msd_first_scattering(cu_msd *g, vec3 sun, double f);

@@ -49,7 +49,9 @@ static int msd_update(cu_renderer *r, cu_cloud_slot *sl, int resample, cu_error 
 {
     if (r->ctx.ms_mode != CU_MS_DIFFUSION)
         return 0;
-    int rc = cu_pass_msd_update(&r->ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, &r->msd_work, err);
+    /* a scene's first frame solves every grid whole: a still image, or a sky's start, gets each cloud's own light */
+    int rc = cu_pass_msd_update(&r->ctx, &sl->msd, &sl->cloud, sl->maps_sun, resample, r->drawn ? &r->msd_work : NULL,
+                                err);
     if (sl->msd.pending)
         r->maps_deferred = 1;
     return rc;

@@ -12,8 +12,11 @@
 typedef struct cu_cloud_msd {
     cu_msd grid;
     GLuint tex;               /* RGBA16F: fluence and flux per unit sun irradiance */
+    vec3 tex_lo, tex_size;    /* its box, cloud-local (m): the grid's, or its coarse grid's (pass_msd.c) */
     int sampled;              /* the grid holds the cloud's density */
     int resample;             /* ... of an earlier look: sample again at the next solve */
+    int sample_k;             /* a sampling spread over frames: the next slice of cells to sample; 0 when none */
+    int stale;                /* sampled since its last solve began: to be solved again */
     int solved;               /* its light has been solved, for sun (the texture's) */
     vec3 sun;
     vec3 solving_sun;         /* the sun of the solve under way (grid.solving), over as many frames as it takes */
@@ -24,12 +27,14 @@ typedef struct cu_cloud_msd {
 
 /* Brings cloud cl's grid up to date (cl at its mature density, as its maps are made): samples its density again
  * when resample is set (now or at an earlier call) or it has none, solves when it was resampled or the sun (world =
- * the cloud's frame's axes) turned past CU_MSD_SUN_STEP, and uploads the answer. A grid never solved is solved whole
- * at once, and so is every solve when work is NULL. Otherwise a solve is spread over frames: each call advances it
- * by at most *work cell updates (a cell in a sweep; at least one sweep) and takes them off *work, and until it is
- * done the cloud keeps the light it has (a few tenths off at most, and bit for bit the same answer in the end). A
- * frame whose work is spent starts no solve. So a frame pays a bounded CPU time for the grids however many clouds'
- * maps follow the sun or change their look: a whole solve is 10-100 ms of CPU at 32 cells, 0.1-1 s at 64. */
+ * the cloud's frame's axes) turned past CU_MSD_SUN_STEP, and uploads the answer. With work NULL (a scene's first
+ * frame) a solve is done whole at once. Otherwise a solve is spread over frames: each call advances it by at most
+ * *work cell updates (a cell in a sweep; at least one sweep) and takes them off *work, and until it is done the cloud
+ * keeps the light it has (bit for bit the same answer in the end); a frame whose work is spent starts no solve. A
+ * cloud that has no light yet (new to a running sky: it came into view, or was born) gets its grid of half the cells
+ * a side solved whole at once, about a sixteenth of the work, and shown until its own grid's solve, started from
+ * that answer, is done. So a frame pays a bounded CPU time for the grids however many clouds' maps follow the sun,
+ * change their look or come into view: a whole solve is 10-100 ms of CPU at 32 cells, 0.1-1 s at 64. */
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
                        long *work, cu_error *err);
 /* Points the frame context at m's texture and box (what cloud.frag reads for the cloud being drawn). */

@@ -229,6 +229,36 @@ static void test_solve_in_steps(void **st)
     }
 }
 
+/* The density sampled a few slices at a time (a renderer's frames) is the density sampled at once. */
+static void test_sample_in_slices(void **st)
+{
+    (void)st;
+    cu_msd whole, g;
+    sphere(&whole, 16);
+    sphere(&g, 16);
+    size_t count = (size_t)g.n[0] * g.n[1] * g.n[2];
+    cu_scene *s = calloc(1, sizeof *s);
+    assert_non_null(s);
+    cu_scene_defaults(s);
+    cu_ellipsoid e = {{0, 1000, 0}, {300, 200, 250}}; /* another look, in the same grid */
+    cu_cloud cl;
+    double off[3] = {0, 0, 0};
+    cu_cloud_build_ellipsoids(&cl, s, &e, 1, s->density_cm3, 40.0, off, NULL);
+    cl.ke = 0.05;
+    cl.noise_on = 0;
+    cu_msd_sample(&whole, &cl);
+    for (int k = 0; k < g.n[2]; k += 3)
+        cu_msd_sample_slices(&g, &cl, k, k + 3);
+    assert_memory_equal(g.ke, whole.ke, count * sizeof *g.ke);
+    double sum = 0.0;
+    for (size_t c = 0; c < count; c++)
+        sum += g.ke[c];
+    assert_true(sum > 0.0);
+    free(s);
+    cu_msd_free(&g);
+    cu_msd_free(&whole);
+}
+
 /* A fine grid's first solve starts from a coarse grid's answer (ms_diffusion.c start_from_coarse): a sphere of 96
  * cells a side settles within the renderer's budget of 1000 sweeps (from nothing it stopped at 1000, short of the
  * tolerance), and its light is the light of a solve that started from it and ran twice as long again. */
@@ -428,6 +458,7 @@ int main(void)
         cmocka_unit_test(test_sphere_symmetry_and_gradient),
         cmocka_unit_test(test_warm_start),
         cmocka_unit_test(test_solve_in_steps),
+        cmocka_unit_test(test_sample_in_slices),
         cmocka_unit_test(test_fine_grid_converges),
         cmocka_unit_test(test_leak_weights),
         cmocka_unit_test(test_leak_weights_flat),

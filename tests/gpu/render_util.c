@@ -52,6 +52,35 @@ int tr_render_again(tr_ctx *c)
     return 0;
 }
 
+int tr_render_from(tr_ctx *c, const char *scene, const char *pos, const char *look)
+{
+    cu_scene *s;
+    cu_error e;
+    char p[128], l[128];
+    snprintf(p, sizeof p, "camera.position=%s", pos);
+    snprintf(l, sizeof l, "camera.look_at=%s", look);
+    float view[16], proj[16];
+    int rc = cu_scene_load(&s, scene, &e);
+    if (!rc) {
+        rc = cu_scene_set(s, p, &e) || cu_scene_set(s, l, &e) ||
+             cu_scene_camera_matrices(s, (double)c->w / c->h, 1.0, 2.0, view, proj, &e);
+        cu_scene_free(s);
+    }
+    if (rc) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    unsigned fbo;
+    int w, h;
+    c->be->frame(c->disp, &fbo, &w, &h);
+    cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = c->linear, .view = view, .projection = proj};
+    if (cu_render(c->r, &f, &e)) {
+        snprintf(c->err, sizeof c->err, "%s", e.msg);
+        return 1;
+    }
+    return 0;
+}
+
 int tr_render(tr_ctx *c, const char *scene, const char *const *sets)
 {
     cu_scene *s;

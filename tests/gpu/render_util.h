@@ -28,6 +28,10 @@ int tr_render(tr_ctx *c, const char *scene, const char *const *sets);
 int tr_render_scene(tr_ctx *c, const cu_scene *s);
 /* Renders the current scene again (after cu_renderer_set_sun, say). */
 int tr_render_again(tr_ctx *c);
+/* Renders the current scene again from another camera: scene's (a path) with camera position pos and look_at look
+ * (scene keys' values), passed as host matrices, so that the renderer keeps its maps and grids (a new scene would
+ * start over). */
+int tr_render_from(tr_ctx *c, const char *scene, const char *pos, const char *look);
 int tr_read_rgbf(tr_ctx *c, float *rgb);      /* top row first, w*h*3 */
 int tr_read_rgba8(tr_ctx *c, uint8_t *rgba);  /* top row first, w*h*4 */
 void tr_close(tr_ctx *c);

@@ -81,10 +81,64 @@ static void test_resolve_over_frames(void **st)
     free(whole);
 }
 
+static void frame_from(tr_ctx *c, const char *pos, const char *look)
+{
+    if (tr_render_from(c, "scenes/cumulus.scene", pos, look))
+        fail_msg("%s", c->err);
+}
+
+/* A cloud that comes into view in a running sky (the camera turned to it) gets its grid of half the cells a side
+ * solved at once and its own grid's solve, started from that answer, over the next frames; the picture settles to
+ * within 1 % of a first frame that solved the grid whole (the two solves start from different places and stop at the
+ * same tolerance), and the coarse grid's frame is already within 10 % of it. */
+static void test_new_cloud_coarse_first(void **st)
+{
+    (void)st;
+    static const char *pos = "0 300 -1500", *at = "0 300 0";
+    const char *sets[] = {"ms.mode=diffusion", "quality.sun_map_frames=1", "camera.position=0 300 -1500",
+                          "camera.look_at=0 300 -3000", NULL};
+    const char *sets_at[] = {"ms.mode=diffusion", "quality.sun_map_frames=1", "camera.position=0 300 -1500",
+                             "camera.look_at=0 300 0", NULL};
+    float *img = malloc(sizeof(float) * NPX), *first = malloc(sizeof(float) * NPX), *whole = malloc(sizeof(float) * NPX);
+    assert_true(img && first && whole);
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, W, H, 1))
+        fail_msg("%s", c.err);
+    if (tr_render(&c, "scenes/cumulus.scene", sets_at))
+        fail_msg("%s", c.err);
+    tr_read_rgbf(&c, whole);
+    if (tr_render(&c, "scenes/cumulus.scene", sets)) /* a new scene, the cloud behind the camera */
+        fail_msg("%s", c.err);
+    const cu_cloud_msd *m = &c.r->clouds.slot[0].msd;
+    assert_int_equal(m->solved, 0);
+    frame_from(&c, pos, at);
+    tr_read_rgbf(&c, first);
+    assert_int_equal(m->solved, 1);
+    assert_int_equal(m->grid.solving, 1); /* 300 thousand cell updates: short of the whole grid's solve */
+    assert_true(m->tex_size.x > m->grid.h[0] * m->grid.n[0] - 1e-3); /* the coarse grid's box holds the fine one's */
+    assert_int_equal(cu_renderer_settled(c.r), 0);
+    int frames = 1;
+    for (; !cu_renderer_settled(c.r) && frames < 200; frames++)
+        frame_from(&c, pos, at);
+    tr_read_rgbf(&c, img);
+    assert_int_equal(m->grid.solving, 0);
+    double d_first = tr_rel_diff(first, whole, NPX), d_final = tr_rel_diff(img, whole, NPX);
+    print_message("a cloud coming into view: its own grid's light after %d frames; the coarse grid's frame %.4f off "
+                  "the whole first solve's, the settled picture %.4f\n", frames, d_first, d_final);
+    assert_true(frames > 1);
+    assert_true(d_first > 0.0 && d_first < 0.10);
+    assert_true(d_final < 0.01);
+    tr_close(&c);
+    free(img);
+    free(first);
+    free(whole);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_resolve_over_frames),
+        cmocka_unit_test(test_new_cloud_coarse_first),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -217,23 +217,11 @@ static void test_creeping_sun_does_not_pop(void **st)
  * keeps its maps (a new scene would start over). */
 static void frame_from(tr_ctx *c, const double pos[3], const double look[3])
 {
-    cu_scene *s;
-    cu_error e;
     char p[96], l[96];
-    snprintf(p, sizeof p, "camera.position=%.9g %.9g %.9g", pos[0], pos[1], pos[2]);
-    snprintf(l, sizeof l, "camera.look_at=%.9g %.9g %.9g", look[0], look[1], look[2]);
-    if (cu_scene_load(&s, "scenes/cumulus.scene", &e) || cu_scene_set(s, p, &e) || cu_scene_set(s, l, &e))
-        fail_msg("%s", e.msg);
-    float view[16], proj[16];
-    unsigned fbo;
-    int w, h;
-    if (cu_scene_camera_matrices(s, (double)W / H, 1.0, 2.0, view, proj, &e))
-        fail_msg("%s", e.msg);
-    c->be->frame(c->disp, &fbo, &w, &h);
-    cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = c->linear, .view = view, .projection = proj};
-    if (cu_render(c->r, &f, &e))
-        fail_msg("%s", e.msg);
-    cu_scene_free(s);
+    snprintf(p, sizeof p, "%.9g %.9g %.9g", pos[0], pos[1], pos[2]);
+    snprintf(l, sizeof l, "%.9g %.9g %.9g", look[0], look[1], look[2]);
+    if (tr_render_from(c, "scenes/cumulus.scene", p, l))
+        fail_msg("%s", c->err);
 }
 
 /* A camera flying on at 100 m above the ground moves the ground's shadow square (8 km, re-centred every 500 m): the

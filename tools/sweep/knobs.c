@@ -234,8 +234,9 @@ int knob_preset_eligible(int k, int j)
         return atoi(sw_knobs[k].vals[j]) >= 2;
     /* a diffusion grid's solve runs on the CPU when a cloud's maps are made and again as the sun turns, outside the
      * static frames the sweep times: every cloud of a field in its first frame (scenes/field_noon.scene: 35 solves,
-     * seconds), each new cloud of a living sky in the frame it appears. A preset chosen on frame time alone would hide
-     * that cost, so it is measured and reported but not chosen (README "Speed against accuracy") */
+     * seconds), later up to ms.frame_work a frame and a coarse grid for each cloud new to the view (pass_msd.h). A
+     * preset chosen on frame time alone would hide that cost, so it is measured and reported but not chosen (README
+     * "Speed against accuracy") */
     if (sw_knob_is(k, "ms.mode"))
         return strcmp(sw_knobs[k].vals[j], "diffusion") != 0;
     /* the sun's maps are made outside the static frames the sweep times (once for a still sun, a band a frame while it
