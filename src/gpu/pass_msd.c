@@ -43,25 +43,24 @@ static double ms_since(const struct timespec *t0)
     return 1e3 * (t1.tv_sec - t0->tv_sec) + 1e-6 * (t1.tv_nsec - t0->tv_nsec);
 }
 
-/* A cloud new to a running sky: its grid of half the cells a side solved whole now (about a sixteenth of the fine
- * solve's work) and shown, and the fine grid's solve started from it, to go on within the frames' work. 1 when the
- * grid is too small to halve, or out of memory: then the fine grid is solved whole. */
-static int coarse_first(const cu_gpu_scene *ctx, cu_cloud_msd *m, vec3 sun)
+/* A cloud new to a running sky: its grid of half the cells a side sampled (an eighth of the fine grid's samples),
+ * solved whole now (about a sixteenth of the fine solve's work) and shown; the fine grid is then sampled and solved
+ * within the frames' work, its solve starting from this answer (m->coarse, kept until then). 1 when the grid is too
+ * small to halve, or out of memory: then the fine grid is sampled and solved whole. */
+static int coarse_first(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun)
 {
     const cu_msd *g = &m->grid;
-    cu_msd c;
     if (g->n[0] < 2 * CU_MSD_MIN_CELLS && g->n[1] < 2 * CU_MSD_MIN_CELLS && g->n[2] < 2 * CU_MSD_MIN_CELLS)
         return 1;
-    if (cu_msd_coarsen(g, &c))
+    if (cu_msd_coarsen(g, &m->coarse)) /* the box; its density is the cloud's own, sampled */
         return 1;
     struct timespec t0;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    cu_msd_solve(&c, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
-    cu_msd_start_from(&m->grid, &c);
-    upload(ctx, m, &c);
+    cu_msd_sample(&m->coarse, cl);
+    cu_msd_solve(&m->coarse, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
+    upload(ctx, m, &m->coarse);
     cu_gpu_log(ctx, CU_LOG_DEBUG, "ms.mode = diffusion: a new cloud's coarse grid first: %dx%dx%d cells, %d sweeps, "
-               "%.0f ms on the CPU", c.n[0], c.n[1], c.n[2], c.sweeps, ms_since(&t0));
-    cu_msd_free(&c);
+               "%.0f ms on the CPU", m->coarse.n[0], m->coarse.n[1], m->coarse.n[2], m->coarse.sweeps, ms_since(&t0));
     m->sun = sun;
     m->solved = 1;
     return 0;
@@ -85,6 +84,8 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
             v3_dot(m->sun, sun) >= cos(CU_MSD_SUN_STEP * CU_PI / 180.0))
             return 0;
         m->pending = 1;
+        if (!m->solved && work)
+            coarse_first(ctx, m, cl, sun);
         long *paid = m->solved ? work : NULL; /* a first solve samples and starts whole */
         if (paid && *paid <= 0)
             return 0; /* a later frame's: until then the cloud keeps the light it has */
@@ -106,8 +107,10 @@ int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud 
             if (paid && *paid <= 0)
                 return 0;
         }
-        if (!m->solved && work)
-            coarse_first(ctx, m, sun);
+        if (m->coarse.ke) { /* a new cloud's: its solve starts from the coarse grid's answer */
+            cu_msd_start_from(&m->grid, &m->coarse);
+            cu_msd_free(&m->coarse);
+        }
         if (paid)
             *paid -= cells * MSD_BEGIN_WORK;
         cu_msd_solve_begin(&m->grid, sun, ctx->msd_f, ctx->msd_g, MSD_MOST_SWEEPS, MSD_TOL);
@@ -151,6 +154,7 @@ void cu_pass_msd_free(cu_cloud_msd *m, const cu_gl *gl)
     if (m->tex && gl) /* no GL: the context is gone, and its textures with it */
         gl->DeleteTextures(1, &m->tex);
     cu_msd_free(&m->grid);
+    cu_msd_free(&m->coarse);
     m->tex = 0;
     m->sampled = m->resample = m->solved = m->sample_k = m->stale = 0;
 }

@@ -11,6 +11,7 @@
 
 typedef struct cu_cloud_msd {
     cu_msd grid;
+    cu_msd coarse;            /* a new cloud's grid of half the cells a side, until its own grid's solve starts */
     GLuint tex;               /* RGBA16F: fluence and flux per unit sun irradiance */
     vec3 tex_lo, tex_size;    /* its box, cloud-local (m): the grid's, or its coarse grid's (pass_msd.c) */
     int sampled;              /* the grid holds the cloud's density */
@@ -30,10 +31,11 @@ typedef struct cu_cloud_msd {
  * the cloud's frame's axes) turned past CU_MSD_SUN_STEP, and uploads the answer. With work NULL (a scene's first
  * frame) a solve is done whole at once. Otherwise a solve is spread over frames: each call advances it by at most
  * *work cell updates (a cell in a sweep; at least one sweep) and takes them off *work, and until it is done the cloud
- * keeps the light it has (bit for bit the same answer in the end); a frame whose work is spent starts no solve. A
- * cloud that has no light yet (new to a running sky: it came into view, or was born) gets its grid of half the cells
- * a side solved whole at once, about a sixteenth of the work, and shown until its own grid's solve, started from
- * that answer, is done. So a frame pays a bounded CPU time for the grids however many clouds' maps follow the sun,
+ * keeps the light it has (bit for bit the same answer in the end); a frame whose work is spent starts no solve, and
+ * sampling the cloud's density again goes a slice of cells at a time within the same work. A cloud that has no
+ * light yet (new to a running sky: it came into view, or was born) gets its grid of half the cells a side sampled
+ * and solved whole at once, about a sixteenth of the work, and shown until its own grid, sampled and solved within
+ * the work from that answer, is done. So a frame pays a bounded CPU time for the grids however many clouds' maps follow the sun,
  * change their look or come into view: a whole solve is 10-100 ms of CPU at 32 cells, 0.1-1 s at 64. */
 int cu_pass_msd_update(const cu_gpu_scene *ctx, cu_cloud_msd *m, const cu_cloud *cl, vec3 sun, int resample,
                        long *work, cu_error *err);

@@ -88,7 +88,7 @@ static void frame_from(tr_ctx *c, const char *pos, const char *look)
 }
 
 /* A cloud that comes into view in a running sky (the camera turned to it) gets its grid of half the cells a side
- * solved at once and its own grid's solve, started from that answer, over the next frames; the picture settles to
+ * sampled and solved at once, and its own grid sampled and solved, from that answer, over the next frames; the picture settles to
  * within 1 % of a first frame that solved the grid whole (the two solves start from different places and stop at the
  * same tolerance), and the coarse grid's frame is already within 10 % of it. */
 static void test_new_cloud_coarse_first(void **st)
@@ -114,7 +114,9 @@ static void test_new_cloud_coarse_first(void **st)
     frame_from(&c, pos, at);
     tr_read_rgbf(&c, first);
     assert_int_equal(m->solved, 1);
-    assert_int_equal(m->grid.solving, 1); /* 300 thousand cell updates: short of the whole grid's solve */
+    assert_int_equal(m->pending, 1); /* 300 thousand cell updates: short of sampling and solving the whole grid */
+    assert_non_null(m->coarse.ke);
+    assert_int_equal(m->coarse.n[0], (m->grid.n[0] + 1) / 2);
     assert_true(m->tex_size.x > m->grid.h[0] * m->grid.n[0] - 1e-3); /* the coarse grid's box holds the fine one's */
     assert_int_equal(cu_renderer_settled(c.r), 0);
     int frames = 1;
@@ -122,6 +124,8 @@ static void test_new_cloud_coarse_first(void **st)
         frame_from(&c, pos, at);
     tr_read_rgbf(&c, img);
     assert_int_equal(m->grid.solving, 0);
+    assert_null(m->coarse.ke); /* freed when the fine solve started from it */
+    assert_true(m->tex_size.x < m->grid.h[0] * m->grid.n[0] + 1e-3); /* the fine grid's own texture */
     double d_first = tr_rel_diff(first, whole, NPX), d_final = tr_rel_diff(img, whole, NPX);
     print_message("a cloud coming into view: its own grid's light after %d frames; the coarse grid's frame %.4f off "
                   "the whole first solve's, the settled picture %.4f\n", frames, d_first, d_final);
