@@ -225,8 +225,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("ms", "grid", 1, "32", 8, 96, 0, "", "mode = diffusion: cells along the longest side of a cloud's grid",
         S(ms_grid)),
     INT("ms", "frame_work", 1, "300", 1, 1000000, 0, "",
-        "mode = diffusion: thousands of cell updates a frame for solving grids again (the sun turned, a cloud changed); "
-        "a cloud's first solve is whole",
+        "mode = diffusion: thousands of cell updates a frame for sampling and solving grids again (the sun turned, a "
+        "cloud changed or came into view); a scene's first frame solves every grid whole",
         S(ms_frame_work)),
     BOOL("ms", "closure", "on",
          "slab and collector modes: scale multiple scattering so the clouds send out no more light than they "
