@@ -111,23 +111,30 @@ static void test_slanted_beam(void **st)
     print_message("slanted beams: the first scattering within %.2f %% of the light each slab stops\n", 100.0 * worst);
 }
 
-/* A sphere of radius 300 m (core k_e 0.05 / m, boundary 40 m), lit from +y. */
-static void sphere(cu_msd *g, int cells)
+/* An ellipsoid of radii r about (0, 1000, 0) m: core k_e 0.05 / m, boundary 40 m, no noise. */
+static cu_cloud ellipsoid_cloud(vec3 r)
 {
     cu_scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
     cu_scene_defaults(s);
     s->noise = 0;
-    cu_ellipsoid e = {{0, 1000, 0}, {300, 300, 300}};
+    cu_ellipsoid e = {{0, 1000, 0}, {r.x, r.y, r.z}};
     cu_cloud cl;
     double off[3] = {0, 0, 0};
-    cu_cloud_build_ellipsoids(&cl, s, &e, 1, s->density_cm3, 40.0, off, NULL);
+    cu_cloud_build_ellipsoids(&cl, s, &e, 1, s->density_cm3, 40.0, off, NULL); /* copies what it needs of s */
     cl.ke = 0.05;
     cl.noise_on = 0;
+    free(s);
+    return cl;
+}
+
+/* A sphere of radius 300 m (ellipsoid_cloud), lit from +y. */
+static void sphere(cu_msd *g, int cells)
+{
+    cu_cloud cl = ellipsoid_cloud(v3(300, 300, 300));
     cu_error err = {{0}};
     assert_int_equal(cu_msd_init(g, &cl, cells, &err), 0);
     cu_msd_sample(g, &cl);
-    free(s);
 }
 
 static void test_sphere_symmetry_and_gradient(void **st)
@@ -237,15 +244,7 @@ static void test_sample_in_slices(void **st)
     sphere(&whole, 16);
     sphere(&g, 16);
     size_t count = (size_t)g.n[0] * g.n[1] * g.n[2];
-    cu_scene *s = calloc(1, sizeof *s);
-    assert_non_null(s);
-    cu_scene_defaults(s);
-    cu_ellipsoid e = {{0, 1000, 0}, {300, 200, 250}}; /* another look, in the same grid */
-    cu_cloud cl;
-    double off[3] = {0, 0, 0};
-    cu_cloud_build_ellipsoids(&cl, s, &e, 1, s->density_cm3, 40.0, off, NULL);
-    cl.ke = 0.05;
-    cl.noise_on = 0;
+    cu_cloud cl = ellipsoid_cloud(v3(300, 200, 250)); /* another look, in the same grid */
     cu_msd_sample(&whole, &cl);
     for (int k = 0; k < g.n[2]; k += 3)
         cu_msd_sample_slices(&g, &cl, k, k + 3);
@@ -254,7 +253,6 @@ static void test_sample_in_slices(void **st)
     for (size_t c = 0; c < count; c++)
         sum += g.ke[c];
     assert_true(sum > 0.0);
-    free(s);
     cu_msd_free(&g);
     cu_msd_free(&whole);
 }
