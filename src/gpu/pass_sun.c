@@ -153,6 +153,7 @@ void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_
     const cu_gl *gl = ctx->gl;
     gl->Disable(GL_CULL_FACE);
     gl->Disable(GL_BLEND);
+    int first = !rows || rows[0] == 0, kept = out->intervals;
     out->intervals = 0;
     cu_sun_band_scissor(gl, rows);
     if (p->method == CU_SHADOW_FRONT) {
@@ -160,7 +161,11 @@ void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_
         return;
     }
     int tiles = p->tiles; /* osm, fom: all tiles of their one target (no interval bookkeeping) */
-    if (p->method == CU_SHADOW_PEEL) {
+    if (p->method == CU_SHADOW_PEEL && !first && kept > 0) {
+        /* a later band of the same map (frame_maps.c bands it from row 0 up, one sun): the first band's count,
+         * so every band fills the same tiles; 4096 sun rays cast on the CPU were most of a band's cost on it */
+        tiles = out->intervals = kept;
+    } else if (p->method == CU_SHADOW_PEEL) {
         /* As many interval tiles as this sun direction needs (the layer count follows the scene), capped. */
         int J = cu_sun_max_intervals(ctx->cloud, ctx->sun_dir, 64), most = ctx->scene->sun_intervals;
         tiles = out->intervals = J < 1 ? 1 : J > most ? most : J;

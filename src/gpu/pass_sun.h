@@ -32,7 +32,9 @@ void cu_sun_band_scissor(const cu_gl *gl, const int rows[2]);
  * band's scissor (cu_sun_band_scissor). */
 void cu_sun_map_tiles(const cu_gpu_scene *ctx, vec3 right, vec3 up, int tiles, const int rows[2]);
 /* Renders ctx->cloud's map for ctx's sun direction and updates out: its rows [rows[0], rows[1]) (a band of them,
- * frame_maps.c), or all (rows NULL). Leaves the scissor test on those rows (every tile), or off for all. */
+ * frame_maps.c), or all (rows NULL). Bands are drawn in order from row 0 with one sun: a band after the first keeps
+ * the interval count (peel's tiles) that out holds from it. Leaves the scissor test on those rows (every tile), or
+ * off for all. */
 void cu_pass_sun_update(const cu_pass_sun *p, const cu_gpu_scene *ctx, const cu_target *map, const int rows[2],
                         cu_sun_maps *out);
 #endif
