@@ -38,6 +38,8 @@ typedef struct cu_cloud_slot {
     cu_sun_maps next_sun_maps;
     vec3 next_sun, next_boil;
     int next_band;             /* bands drawn so far (0: none under way) */
+    int next_box[2];           /* the rows of next_sun's map that rays can meet the cloud in, shared out among the
+                                * bands (cu_sun_band_rows), fixed at the first band */
     int next_zenith;           /* the zenith's slab map is made again too (the noise boiled on) */
     cu_target shadow;          /* other clouds' optical depth over its sun-map square (pass_shadow.c) */
     int has_shadow;            /* this frame: some other cloud shades it, and shadow holds their optical depth */

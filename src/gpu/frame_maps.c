@@ -111,10 +111,16 @@ static int remake_band(cu_renderer *r, cu_cloud_slot *sl, int boiled, cu_error *
         sl->next_zenith = boiled;
     }
     double f = bind_mature(r, sl, sl->next_sun);
-    int size = ctx->sun_size, y0 = size * sl->next_band / bands, y1 = size * (sl->next_band + 1) / bands;
+    if (sl->next_band == 0) { /* the bands share out the rows of the map's box: equal work a frame */
+        int box[4];
+        cu_sun_map_texels(ctx->cloud, ctx->sun_right, ctx->sun_up, ctx->sun_R, ctx->sun_size, box);
+        sl->next_box[0] = box[1];
+        sl->next_box[1] = box[3];
+    }
+    int rows[2]; /* every tile of the row band (the sun map's tiles lie side by side) */
+    cu_sun_band_rows(ctx->sun_size, sl->next_box[0], sl->next_box[1], bands, sl->next_band, rows);
     int last = ++sl->next_band == bands;
     cu_slab_maps slab = sl->slab;
-    const int rows[2] = {y0, y1}; /* every tile of the row band (the sun map's tiles lie side by side) */
     cu_pass_sun_update(&r->pass_sun, ctx, &sl->next_sun_map, rows, &sl->next_sun_maps);
     ctx->sun = sl->next_sun_maps;
     cu_pass_slab_update(&r->pass_slab, ctx, 0, sl->next_slab_map, rows, &slab, last);

@@ -38,6 +38,16 @@ void cu_sun_map_texels(const cu_cloud *cl, vec3 right, vec3 up, double R, int si
     }
 }
 
+void cu_sun_band_rows(int size, int lo, int hi, int bands, int b, int rows[2])
+{
+    if (!(hi > lo)) {
+        lo = 0;
+        hi = size;
+    }
+    rows[0] = b <= 0 ? 0 : lo + (int)((long)(hi - lo) * b / bands);
+    rows[1] = b >= bands - 1 ? size : lo + (int)((long)(hi - lo) * (b + 1) / bands);
+}
+
 int cu_union_intervals(const cu_cloud *cl, vec3 o, vec3 d, double *a, double *b, int max)
 {
     double t0[CU_MAX_ELLIPSOIDS], t1[CU_MAX_ELLIPSOIDS];

@@ -13,6 +13,11 @@ double cu_sun_radius(const cu_cloud *cl);
 /* The texels (x0, y0, x1, y1, half-open) of a size x size map over [-R, R]^2 in the sun plane (right, up) whose rays
  * through their centres can meet an ellipsoid of cl, a texel wider each way; an empty box for none. */
 void cu_sun_map_texels(const cu_cloud *cl, vec3 right, vec3 up, double R, int size, int box[4]);
+/* Rows [rows[0], rows[1]) of band b (0 .. bands - 1) of a size-row map made again a band a frame: the rows [lo, hi)
+ * of its box (cu_sun_map_texels) shared out evenly, the rows below the box going with the first band and those above
+ * with the last (outside the box a band only clears), so that every band casts about as many rays. In order, the
+ * bands cover [0, size) once; an empty box shares out the whole map. */
+void cu_sun_band_rows(int size, int lo, int hi, int bands, int b, int rows[2]);
 /* Number of union intervals along the ray o + t d, and their ends (up to max). */
 int cu_union_intervals(const cu_cloud *cl, vec3 o, vec3 d, double *a, double *b, int max);
 #endif

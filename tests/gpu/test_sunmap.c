@@ -537,6 +537,44 @@ static void test_map_texels(void **st)
     assert_true(empty_texels > texels / 10);
 }
 
+/* cu_sun_band_rows, the rows a band of a map made again over several frames draws (frame_maps.c): for every map size,
+ * band count and box (empty, whole, at either edge, one row), the bands in order cover the map's rows once, and each
+ * holds within one row of its share of the box's rows (the rays it casts); an even split of the map's rows would give
+ * a box in one half of a 128-row map 0 rows in two of four bands and 32 in the others. */
+static void test_band_rows(void **st)
+{
+    (void)st;
+    static const int boxes[][2] = {{0, 0}, {5, 5}, {0, 1 << 30}, {0, 7}, {3, 1 << 30}, {9, 10}, {1, 2}};
+    for (int size = 16; size <= 512; size *= 2)
+        for (int bands = 1; bands <= 16; bands++)
+            for (int k = 0; k < (int)(sizeof boxes / sizeof boxes[0]) + 20; k++) {
+                int lo, hi;
+                if (k < (int)(sizeof boxes / sizeof boxes[0])) {
+                    lo = boxes[k][0] < size ? boxes[k][0] : size;
+                    hi = boxes[k][1] < size ? boxes[k][1] : size;
+                } else { /* cu_sun_map_texels's boxes lie in [0, size] */
+                    lo = (k * 37 + bands * 11) % size;
+                    hi = lo + (k * 53 + size) % (size - lo + 1);
+                }
+                int at = 0, least = 1 << 30, most = -1, e0 = hi > lo ? lo : 0, e1 = hi > lo ? hi : size;
+                for (int b = 0; b < bands; b++) {
+                    int rows[2];
+                    cu_sun_band_rows(size, lo, hi, bands, b, rows);
+                    if (rows[0] != at || rows[1] < rows[0])
+                        fail_msg("size %d, %d bands, box %d %d: band %d is rows %d %d after %d", size, bands, lo, hi,
+                                 b, rows[0], rows[1], at);
+                    at = rows[1];
+                    int in = (rows[1] < e1 ? rows[1] : e1) - (rows[0] > e0 ? rows[0] : e0);
+                    in = in > 0 ? in : 0;
+                    least = in < least ? in : least;
+                    most = in > most ? in : most;
+                }
+                if (at != size || most - least > 1)
+                    fail_msg("size %d, %d bands, box %d %d: bands end at %d, hold %d to %d of the box's rows", size,
+                             bands, lo, hi, at, least, most);
+            }
+}
+
 /* The slab maps (ms.mode = slab, pass_slab.c), seen from the sun and, for the sky's light, from the zenith: a sun 10
  * degrees high, so that the two see the cloud along different axes and a box made for one would cut the other. Each
  * texel's coverage (level 0, channel 0) is 1 where its ray meets the union of the ellipsoids on the CPU and 0 where it
@@ -595,6 +633,7 @@ int main(void)
         cmocka_unit_test(test_alternatives),
         cmocka_unit_test(test_alternative_renders),
         cmocka_unit_test(test_map_texels),
+        cmocka_unit_test(test_band_rows),
         cmocka_unit_test(test_slab_map_coverage),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
