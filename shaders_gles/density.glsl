@@ -228,30 +228,40 @@ int next_interval(int k, out float a, out float b, out int merged)
     return k;
 }
 
+// The points of an interval where the sun map keeps the optical depth from its entry (sun_opacity.frag, sunmap.glsl),
+// as fractions of its length: 1/32 and 1/8 near the entry, where the noisy boundary ramp makes tau strongly convex (a
+// line from the entry to 1/4 put a front-lit cloud's lit skin in shadow: about 1/3 too dark against the path
+// tracer), then 1/4, 1/2 and 3/4, and the exit.
+const int TAU_POINTS = 5;
+const float TAU_AT[TAU_POINTS] = float[TAU_POINTS](0.03125, 0.125, 0.25, 0.5, 0.75);
+
 // Optical depth through the in-cloud interval [a, b] of the ray ro + t dir: n trapezoids on the knots above (uniform
 // core; boundary ramps if `ramps`), the end samples a hair inside (as in cloud.frag). Also returns the cumulative
-// optical depth at 1/4, 1/2, 3/4 and 1 of the interval, each a knot of its own (a segment holding a quarter point
-// is split there), so the opacity map stores sampled values, not interpolations inside a noisy segment. One loop
-// over the knots and the quarter points in order, one density sample a trip: a loop nested in it for the quarter
-// points cost a sample every knot on llvmpipe, which runs a loop's first trip whether or not any pixel takes it.
-float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, out vec4 quarters)
+// optical depth at the TAU_AT points (near.x, near.y: 1/32, 1/8; quarters: 1/4, 1/2, 3/4 and 1 of the interval),
+// each a knot of its own (a segment holding one is split there), so the opacity map stores sampled values, not
+// interpolations inside a noisy segment. One loop over the knots and the points in order, one density sample a
+// trip: a loop nested in it for the points cost a sample every knot on llvmpipe, which runs a loop's first trip
+// whether or not any pixel takes it.
+float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, out vec4 quarters, out vec2 near)
 {
     float len = b - a;
     float nudge = min(1e-3 * len, 0.05);
     knots kn = make_knots(a, len, nudge, n, 1.0, ramps);
     int m = knot_count(kn);
     float t_prev = a, ke_prev = extinction(ro + dir * (a + nudge), a + nudge), tau = 0.0;
-    int i = 1, j = 0; // the next knot, the next quarter point
+    int i = 1, j = 0; // the next knot, the next point
     float t_knot = m == 1 ? b : knot_t_uniform(kn, 1);
-    quarters = vec4(0.0);
-    for (int step = 0; step < m + 3 && i <= m; step++) {
-        float q = a + 0.25 * float(j + 1) * len;
-        bool inside = j < 3 && q < t_knot - 1e-4 * len; // a quarter point strictly inside this segment: first
+    float got[TAU_POINTS];
+    for (int k = 0; k < TAU_POINTS; k++)
+        got[k] = 0.0;
+    for (int step = 0; step < m + TAU_POINTS && i <= m; step++) {
+        float q = a + TAU_AT[min(j, TAU_POINTS - 1)] * len;
+        bool inside = j < TAU_POINTS && q < t_knot - 1e-4 * len; // a point strictly inside this segment: first
         float t = inside ? q : t_knot, ts = inside || i < m ? t : b - nudge;
         float ke = extinction(ro + dir * ts, ts);
         tau += (t - t_prev) * 0.5 * (ke_prev + ke);
-        if (inside || (j < 3 && abs(q - t) < 1e-4 * len)) { // ... or a knot on it
-            quarters[min(j, 3)] = tau;
+        if (inside || (j < TAU_POINTS && abs(q - t) < 1e-4 * len)) { // ... or a knot on it
+            got[min(j, TAU_POINTS - 1)] = tau;
             j++;
         }
         if (!inside) {
@@ -261,6 +271,7 @@ float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps,
         t_prev = t;
         ke_prev = ke;
     }
-    quarters.w = tau;
+    near = vec2(got[0], got[1]);
+    quarters = vec4(got[2], got[3], got[4], tau);
     return tau;
 }

@@ -3,9 +3,9 @@
 // from the sun is cast through every ellipsoid, its chords are merged into the union's intervals (the surfaces a
 // depth peel would find, but exact: the ellipsoids are analytic, so no hull rasterisation, no polygonal depths and no
 // peel passes are needed), and the real density, noise included, is integrated through interval j = the tile this
-// fragment lies in. Output: target 0 (z_entry, z_exit) in metres from the sun plane; target 1: tau at 1/4, 1/2, 3/4
-// and 1 of the interval. SUN_SAMPLES trapezoid segments, boundary ramps on their own, quarter points sampled
-// (integrate_interval in density.glsl).
+// fragment lies in. Output: target 0 (z_entry, z_exit) in metres from the sun plane and tau at 1/32 and 1/8 of the
+// interval; target 1: tau at 1/4, 1/2, 3/4 and 1 of it. SUN_SAMPLES trapezoid segments, boundary ramps on their
+// own, those points sampled (integrate_interval and TAU_AT in density.glsl).
 #include "density.glsl"
 uniform vec3 u_sun_dir, u_sun_right, u_sun_up;
 uniform float u_sun_R;
@@ -33,7 +33,8 @@ void main()
         k = next_interval(k, a, b, merged);
     }
     vec4 q;
-    integrate_interval(ro, dir, a, b, SUN_SAMPLES, true, q);
-    o_layers = vec4(a, b, 0.0, 0.0);
+    vec2 qn;
+    integrate_interval(ro, dir, a, b, SUN_SAMPLES, true, q, qn);
+    o_layers = vec4(a, b, qn);
     o_tau = q;
 }

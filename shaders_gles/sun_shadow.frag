@@ -21,7 +21,8 @@ void main()
         int merged;
         k = next_interval(k, a, b, merged);
         vec4 q;
-        tau += integrate_interval(ro, u_dir, a, b, 8 * merged, true, q);
+        vec2 qn;
+        tau += integrate_interval(ro, u_dir, a, b, 8 * merged, true, q, qn);
     }
     o_tau = vec4(tau, 0.0, 0.0, 1.0);
 }

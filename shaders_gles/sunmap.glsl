@@ -26,7 +26,8 @@ uniform float u_sun_R;         // the sun plane is at 2R along u_sun_dir, maps c
 uniform int u_sun_size;        // texels per side
 uniform float u_sun_tau_scale; // the cloud's density now against the map's (life cycle, border fade)
 #if SHADOW_PEEL
-uniform sampler2D u_sun_layers;  // per interval j (tile j of SUN_INTERVALS side by side): z_entry, z_exit (m)
+uniform sampler2D u_sun_layers;  // per interval j (tile j of SUN_INTERVALS side by side): z_entry, z_exit (m), and
+                                 // tau at 1/32 and 1/8 of it, counted from its entry
 uniform sampler2D u_sun_tau;     // tau at 1/4, 1/2, 3/4, 1 of interval j, counted from its entry
 uniform int u_sun_intervals;     // intervals present in this sun direction (<= SUN_INTERVALS)
 #elif SHADOW_METHOD == 2 || SHADOW_METHOD == 3
@@ -43,7 +44,7 @@ float tau_in_texel(ivec2 tc, float z)
         if (j >= u_sun_intervals)
             break;
         ivec2 at = ivec2(tc.x + j * u_sun_size, tc.y);
-        vec2 ab = texelFetch(u_sun_layers, at, 0).xy;
+        vec4 ab = texelFetch(u_sun_layers, at, 0);
         if (ab.x > 1e29)
             break; // no more intervals on this ray
         float len = ab.y - ab.x;
@@ -52,10 +53,15 @@ float tau_in_texel(ivec2 tc, float z)
             tau += q.w;
         } else {
             if (z > ab.x) {
-                float f = clamp((z - ab.x) / max(len, 1e-6), 0.0, 1.0) * 4.0;
-                float lo = f < 1.0 ? 0.0 : f < 2.0 ? q.x : f < 3.0 ? q.y : q.z;
-                float hi = f < 1.0 ? q.x : f < 2.0 ? q.y : f < 3.0 ? q.z : q.w;
-                tau += mix(lo, hi, fract(min(f, 3.9999)));
+                // linear between the entry (0), 1/32, 1/8 (ab.zw), 1/4, 1/2, 3/4 and the exit (q): TAU_AT in
+                // density.glsl; s counts the pieces, 0 to 6
+                float u = clamp((z - ab.x) / max(len, 1e-6), 0.0, 1.0);
+                float s = u < 0.25 ? (u < 0.125 ? (u < 0.03125 ? 32.0 * u : 1.0 + (u - 0.03125) * (32.0 / 3.0))
+                                                : 2.0 + 8.0 * (u - 0.125))
+                                   : 3.0 + 4.0 * (u - 0.25);
+                float lo = s < 3.0 ? (s < 1.0 ? 0.0 : s < 2.0 ? ab.z : ab.w) : s < 4.0 ? q.x : s < 5.0 ? q.y : q.z;
+                float hi = s < 3.0 ? (s < 1.0 ? ab.z : s < 2.0 ? ab.w : q.x) : s < 4.0 ? q.y : s < 5.0 ? q.z : q.w;
+                tau += mix(lo, hi, fract(min(s, 5.9999)));
             }
             break;
         }
