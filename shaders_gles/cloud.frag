@@ -5,7 +5,7 @@
 // Compile-time switches (only what the scene uses is compiled): NUM_ELL, SEGMENTS, MAX_INTERVALS, NOISE,
 // NOISE_OCTAVES, PROFILE_KOL, INTEGRATION_KOL, MS_MODE (0 none, 1 octaves, 2 slab, 3 collector, 4 diffusion), MS_OCTAVES,
 // PHASE_PEAK (chopped Mie), SKY_SPLIT (sky and ground light told apart by the slab model), FULLSCREEN (camera
-// inside), BOUNDARY_KNOTS (quality.boundary_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_*
+// inside), BOUNDARY_KNOTS (quality.boundary_step), RAMP_KNOTS (quality.ramp_step), SHADOW_PEEL, SUN_INTERVALS, SUN_FILTER (sunmap.glsl), SLAB_*
 // (ms_slab.glsl), ENERGY_PASS (the slab model's energy closure, src/gpu/pass_energy.c: sunlight terms apart instead of a colour), EXT_SHADOW (other
 // clouds shade this one: their optical depth along the sun, pass_shadow.c), METHOD_UNIFORM (the mainstream uniform
 // ray march instead of Kol's segments: UNIFORM_STEPS along the view, UNIFORM_SUN_STEPS toward the sun at each).
@@ -63,6 +63,7 @@ uniform float u_host_scale;       // full-resolution pixels per pixel of this pa
 uniform float u_bound_R;       // radius of a sphere about the local origin containing every ellipsoid
 uniform float u_seg_ratio;     // geometric ratio of consecutive segment lengths
 uniform float u_boundary_step; // quality.boundary_step: the longest step along a chord that never reaches the core
+uniform float u_ramp_step;     // quality.ramp_step: the longest step through a chord's entry ramp (RAMP_KNOTS)
 uniform sampler2D u_phase;     // row 0: phase function p(theta) per RGB, sr^-1, theta = i * pi / (N-1);
                                // row 1: the removed forward peak P_p of a chopped Mie function (eq. 3.65)
 #if PHASE_PEAK
@@ -210,6 +211,31 @@ bool reaches_core(vec3 ro, vec3 dir, int k0, int k1)
 }
 #endif
 
+#if RAMP_KNOTS
+// Where the chords k0 .. k1 - 1 of the cast ray first reach the core (d >= h): the entry into each ellipsoid shrunk
+// by h (Kol's radial distance d = R(u) - |q| reaches h on the surface R(u) - h; the ellipsoid with radii r - h is it
+// for a sphere and close to it otherwise: the knots it places need not be exact). 1e30 where none does.
+float core_entry(vec3 ro, vec3 dir, int k0, int k1)
+{
+    float t_core = 1e30;
+    for (int j = k0; j < k1; j++) {
+        int i = hit_idx[j];
+        vec3 r = 1.0 / u_ell_ir[i].xyz - u_h;
+        if (min(r.x, min(r.y, r.z)) <= 0.0)
+            continue; // no core: all boundary
+        vec3 ir = 1.0 / r;
+        vec3 q = (ro - u_ell_c[i].xyz) * ir, ds = dir * ir;
+        float A = dot(ds, ds);
+        float tc = -dot(q, ds) / A;
+        vec3 qc = q + tc * ds;
+        float h2 = 1.0 - dot(qc, qc);
+        if (h2 > 0.0)
+            t_core = min(t_core, tc - sqrt(h2 / A));
+    }
+    return t_core;
+}
+#endif
+
 #if METHOD_UNIFORM && !ENERGY_PASS
 #include "march_uniform.glsl"
 #endif
@@ -347,6 +373,18 @@ void main()
 #if BOUNDARY_KNOTS
         if (!reaches_core(ro, dir, k0, k))
             kn = boundary_knots(a, len, SEGMENTS * merged, u_boundary_step);
+#endif
+#if RAMP_KNOTS
+        // The entry ramp as the ray crosses it (longer than h where the ray enters obliquely), in even steps of at
+        // most u_ramp_step: it is the noisy skin the view sees, and one trapezoid over it sees no noise at all (the
+        // noise is tapered to 0 at both its ends), so silhouettes and the shadowed base came out smooth and bright:
+        // 1.6x the path tracer's single scattering in a front-lit cloud's darkest fifth. The exit ramp, seen through
+        // the core, keeps Kol's share.
+        if (kn.nr_in > 0) {
+            float rl = clamp(core_entry(ro, dir, k0, k) - a, kn.rl_in, 0.75 * len - kn.rl_out);
+            kn.nr_in = clamp(int(ceil(rl / u_ramp_step)), kn.nr_in, RAMP_KNOTS_MAX);
+            kn.rl_in = rl;
+        }
 #endif
         int nk = knot_count(kn);
         float t = a;

@@ -120,10 +120,12 @@ float extinction_anywhere(vec3 p)
 // segment from the surface into the core would take the rise for a linear one over the whole segment. With a thick
 // noisy boundary the ramps keep their share of the samples (the noise lives there).
 // Exact along the normal of a lone ellipsoid; along oblique rays the ramp is longer and the core's first segments
-// see the rest of it. The core's segments grow geometrically by r (1: uniform).
+// see the rest of it (cloud.frag's entry_ramp measures the entry ramp along the ray instead). The core's segments
+// grow geometrically by r (1: uniform). The entry ramp (length rl_in, nr_in segments) and the exit ramp (rl_out,
+// nr_out) are apart: a view ray sees its entry ramp, the exit one only through the core.
 struct knots {
-    float a, len, rl, r;
-    int nr, nc;
+    float a, len, rl_in, rl_out, r;
+    int nr_in, nr_out, nc;
 };
 
 knots make_knots(float a, float len, float nudge, int n, float r, bool allow_ramps)
@@ -131,9 +133,9 @@ knots make_knots(float a, float len, float nudge, int n, float r, bool allow_ram
     knots k;
     k.a = a; k.len = len; k.r = r;
     bool ramps = allow_ramps && u_h > 2.0 * nudge && 2.0 * u_h < 0.5 * len;
-    k.rl = ramps ? u_h : 0.0;
-    k.nr = ramps ? max(1, int(floor(float(n) * u_h / len + 0.5))) : 0;
-    k.nc = max(1, n - 2 * k.nr);
+    k.rl_in = k.rl_out = ramps ? u_h : 0.0;
+    k.nr_in = k.nr_out = ramps ? max(1, int(floor(float(n) * u_h / len + 0.5))) : 0;
+    k.nc = max(1, n - 2 * k.nr_in);
     return k;
 }
 
@@ -141,36 +143,37 @@ knots make_knots(float a, float len, float nudge, int n, float r, bool allow_ram
 // geometric segments alias the noise (their long last segments step over its 30 m features: the blocky rims). Even
 // knots at most `step` apart, at least n, at most BOUNDARY_KNOTS_MAX.
 #define BOUNDARY_KNOTS_MAX 32
+#define RAMP_KNOTS_MAX 16 // quality.ramp_step's most knots in an entry ramp (cloud.frag)
 knots boundary_knots(float a, float len, int n, float step)
 {
     knots k;
-    k.a = a; k.len = len; k.r = 1.0; k.rl = 0.0; k.nr = 0;
+    k.a = a; k.len = len; k.r = 1.0; k.rl_in = k.rl_out = 0.0; k.nr_in = k.nr_out = 0;
     k.nc = clamp(int(ceil(len / step)), n, BOUNDARY_KNOTS_MAX);
     return k;
 }
 
 int knot_count(knots k)
 {
-    return k.nc + 2 * k.nr;
+    return k.nc + k.nr_in + k.nr_out;
 }
 
 // Knot i, the core's at fraction f of its length (the boundary ramps' knots need none).
 float knot_at(knots k, int i, float f)
 {
-    int n = k.nc + 2 * k.nr;
-    if (k.nr > 0 && i <= k.nr)
-        return k.a + k.rl * float(i) / float(k.nr);
-    if (k.nr > 0 && i >= n - k.nr)
-        return k.a + k.len - k.rl * float(n - i) / float(k.nr);
-    float core = k.len - 2.0 * k.rl;
-    return k.a + k.rl + core * f;
+    int n = knot_count(k);
+    if (k.nr_in > 0 && i <= k.nr_in)
+        return k.a + k.rl_in * float(i) / float(k.nr_in);
+    if (k.nr_out > 0 && i >= n - k.nr_out)
+        return k.a + k.len - k.rl_out * float(n - i) / float(k.nr_out);
+    float core = k.len - k.rl_in - k.rl_out;
+    return k.a + k.rl_in + core * f;
 }
 
 float knot_t(knots k, int i)
 {
     // (r^j - 1) / (r^nc - 1), written as r^(j - nc) (1 - r^-j) / (1 - r^-nc): r^nc overflows fp32 for 48 segments
     // per chord over several merged chords (1.6^192), which made NaN
-    float j = float(i - k.nr), lr = log(max(k.r, 1.0)), nc = float(k.nc);
+    float j = float(i - k.nr_in), lr = log(max(k.r, 1.0)), nc = float(k.nc);
     return knot_at(k, i, k.r > 1.0001 ? exp((j - nc) * lr) * (1.0 - exp(-j * lr)) / (1.0 - exp(-nc * lr)) : j / nc);
 }
 
@@ -178,7 +181,7 @@ float knot_t(knots k, int i)
 // works out whatever r is (it runs both sides of a choice).
 float knot_t_uniform(knots k, int i)
 {
-    return knot_at(k, i, float(i - k.nr) / float(k.nc));
+    return knot_at(k, i, float(i - k.nr_in) / float(k.nc));
 }
 
 // Intersects the ray ro + t dir (dir unit) with every ellipsoid and keeps the chords with t1 > 0, clipped to t >= 0

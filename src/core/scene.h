@@ -98,6 +98,7 @@ struct cu_scene {
     int segments;             /* per ellipsoid crossed */
     double segment_ratio;     /* geometric ratio of consecutive segment lengths (1 = uniform) */
     double boundary_step;     /* m: a chord that never reaches the core is marched in steps of at most this (0: off) */
+    double ramp_step;         /* m: a chord's entry ramp is marched in steps of at most this (0: Kol's share) */
     int cloud_downsample;     /* 1..4: the cloud pass at 1/N resolution, upsampled (pass_upsample.c) */
     int temporal_grid;        /* 1..4: each frame marches 1 of G x G cloud pixels, the rest reprojected
                                * (pass_temporal.c); 1: every pixel every frame */

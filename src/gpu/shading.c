@@ -9,7 +9,7 @@ void cu_shading_locs_get(const cu_gl *gl, GLuint p, cu_shading_locs *l)
     cu_density_locs_get(gl, p, &l->density);
     cu_sun_locs_get(gl, p, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, p, "u_" #f)
-    LOC(viewproj); LOC(inv_viewproj); LOC(cam); LOC(bound_R); LOC(seg_ratio); LOC(boundary_step); LOC(phase_n); LOC(sun_irr);
+    LOC(viewproj); LOC(inv_viewproj); LOC(cam); LOC(bound_R); LOC(seg_ratio); LOC(boundary_step); LOC(ramp_step); LOC(phase_n); LOC(sun_irr);
     LOC(sky_rad); LOC(ground_rad); LOC(ms_abc); LOC(ms_g); LOC(peak_f); LOC(ms_gain); LOC(out_scale); LOC(out_max);
     LOC(slab_t); LOC(slab_thv); LOC(slab_thl); LOC(slab_th); LOC(slab_lod); LOC(sky_right); LOC(sky_up);
     LOC(coll_t); LOC(coll_thl); LOC(coll_thv); LOC(coll_phi);
@@ -105,6 +105,7 @@ void cu_shading_uniforms(const cu_gpu_scene *ctx, GLuint p, const cu_shading_loc
     cu_sun_uniforms(ctx, &l->sun);
     gl->Uniform1f(l->seg_ratio, (float)s->segment_ratio);
     gl->Uniform1f(l->boundary_step, (float)s->boundary_step);
+    gl->Uniform1f(l->ramp_step, (float)s->ramp_step);
     gl->Uniform1i(l->phase_n, CU_PHASE_N);
     gl->Uniform3f(l->sun_irr, (float)sky->sun_irradiance[0], (float)sky->sun_irradiance[1],
                   (float)sky->sun_irradiance[2]);

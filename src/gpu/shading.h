@@ -7,7 +7,7 @@
 typedef struct cu_shading_locs {
     cu_density_locs density;
     cu_sun_locs sun;
-    GLint viewproj, inv_viewproj, cam, bound_R, seg_ratio, boundary_step, phase_n, sun_irr, sky_rad, ground_rad, ms_abc, ms_g,
+    GLint viewproj, inv_viewproj, cam, bound_R, seg_ratio, boundary_step, ramp_step, phase_n, sun_irr, sky_rad, ground_rad, ms_abc, ms_g,
         peak_f, ms_gain, out_scale, out_max;
     GLint slab_t, slab_thv, slab_thl, slab_th, slab_lod, sky_right, sky_up, coll_t, coll_thl, coll_thv, coll_phi;
     GLint ortho, view_dir, inv_viewport, host_depth_on, host_inv_vp, host_clear, host_scale, shadow_g;
