@@ -245,7 +245,10 @@ const float TAU_AT[TAU_POINTS] = float[TAU_POINTS](0.03125, 0.125, 0.25, 0.5, 0.
 // interpolations inside a noisy segment. One loop over the knots and the points in order, one density sample a
 // trip: a loop nested in it for the points cost a sample every knot on llvmpipe, which runs a loop's first trip
 // whether or not any pixel takes it.
-float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, out vec4 quarters, out vec2 near)
+// `points` false: the total alone, no sample spent on the points (the slab and shadow maps want only that); a constant
+// at every call, so the compiler drops the points' work after inlining.
+float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps, bool points, out vec4 quarters,
+                         out vec2 near)
 {
     float len = b - a;
     float nudge = min(1e-3 * len, 0.05);
@@ -257,13 +260,14 @@ float integrate_interval(vec3 ro, vec3 dir, float a, float b, int n, bool ramps,
     float got[TAU_POINTS];
     for (int k = 0; k < TAU_POINTS; k++)
         got[k] = 0.0;
-    for (int step = 0; step < m + TAU_POINTS && i <= m; step++) {
+    int np = points ? TAU_POINTS : 0;
+    for (int step = 0; step < m + np && i <= m; step++) {
         float q = a + TAU_AT[min(j, TAU_POINTS - 1)] * len;
-        bool inside = j < TAU_POINTS && q < t_knot - 1e-4 * len; // a point strictly inside this segment: first
+        bool inside = j < np && q < t_knot - 1e-4 * len; // a point strictly inside this segment: first
         float t = inside ? q : t_knot, ts = inside || i < m ? t : b - nudge;
         float ke = extinction(ro + dir * ts, ts);
         tau += (t - t_prev) * 0.5 * (ke_prev + ke);
-        if (inside || (j < TAU_POINTS && abs(q - t) < 1e-4 * len)) { // ... or a knot on it
+        if (inside || (j < np && abs(q - t) < 1e-4 * len)) { // ... or a knot on it
             got[min(j, TAU_POINTS - 1)] = tau;
             j++;
         }

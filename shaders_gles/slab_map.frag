@@ -41,7 +41,7 @@ void main()
         len += b - a;
         vec4 q;
         vec2 qn;
-        tau += integrate_interval(ro, dir, a, b, SLAB_SAMPLES, true, q, qn); // 8 segments: ramps matter
+        tau += integrate_interval(ro, dir, a, b, SLAB_SAMPLES, true, false, q, qn); // 8 segments: ramps matter
     }
     float s = 1.0 / u_map_R;
     o_slab = vec4(1.0, dot(ro + dir * hit_t0[0], u_map_dir) * s, len * s, min(tau, 1e4));

@@ -34,7 +34,7 @@ void main()
     }
     vec4 q;
     vec2 qn;
-    integrate_interval(ro, dir, a, b, SUN_SAMPLES, true, q, qn);
+    integrate_interval(ro, dir, a, b, SUN_SAMPLES, true, true, q, qn);
     o_layers = vec4(a, b, qn);
     o_tau = q;
 }

@@ -22,7 +22,7 @@ void main()
         k = next_interval(k, a, b, merged);
         vec4 q;
         vec2 qn;
-        tau += integrate_interval(ro, u_dir, a, b, 8 * merged, true, q, qn);
+        tau += integrate_interval(ro, u_dir, a, b, 8 * merged, true, false, q, qn);
     }
     o_tau = vec4(tau, 0.0, 0.0, 1.0);
 }

@@ -125,7 +125,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "15 samples the noise's strongest octave, 31 m across at noise_scale 1, twice)",
         S(boundary_step)),
     /* ramp_step: a length; an entry ramp takes at most 16 such steps (RAMP_KNOTS_MAX in density.glsl) */
-    NUM("quality", "ramp_step", 1, "8", 0, 1e4, 0, "m",
+    NUM("quality", "ramp_step", 1, "0", 0, 1e4, 0, "m",
         "with noise: the noisy boundary where a ray's chord enters a cloud, as far as the core, is marched in even "
         "steps of at most this, up to 16 (0: its share of quality.segments, one step where the boundary is thin "
         "against the chord, which sees none of the noise)",

@@ -17,8 +17,7 @@ static const char *const FAMILY[2] = {"kol", "uniform"};
 
 /* Kol's method along its curve: the presets, and the segment count (the knob that moves its error most) about them;
  * then what this work changed in the defaults taken back: the exact noise (quality.noise_baked = off: 10 texture reads
- * a sample, not 2), Kol's segments on chords that never reach the core (quality.boundary_step = 0) and Kol's share of
- * them in the entry ramp (quality.ramp_step = 0). */
+ * a sample, not 2) and Kol's segments on chords that never reach the core (quality.boundary_step = 0). */
 static const struct {
     int preset;        /* cu_preset whose settings come first */
     const char *more;  /* then these */
@@ -52,8 +51,12 @@ static const struct {
     {CU_PRESET_HIGH, "quality.noise_baked=off;quality.boundary_step=0",
      "high as before (exact noise, no boundary knots)", 1},
     {CU_PRESET_MEDIUM, "quality.noise_baked=off;quality.boundary_step=0", "medium as before", 1},
-    {CU_PRESET_HIGH, "quality.ramp_step=0", "high, Kol's entry ramp", 1},
-    {CU_PRESET_MEDIUM, "quality.ramp_step=0", "medium, Kol's entry ramp", 1},
+    /* the entry ramp marched in 8 m steps (quality.ramp_step): single scattering where the path tracer puts it */
+    {CU_PRESET_HIGH, "quality.ramp_step=8", "high, entry ramp 8 m", 0},
+    {CU_PRESET_MEDIUM, "quality.ramp_step=8", "medium, entry ramp 8 m", 0},
+    {CU_PRESET_MEDIUM, "ms.mode=diffusion;quality.segments=2;quality.ramp_step=8",
+     "medium, diffusion, 2 segments, entry ramp 8 m", 0},
+    {CU_PRESET_LOW, "ms.mode=diffusion;quality.ramp_step=8", "low, diffusion, entry ramp 8 m", 0},
 };
 #define N_KOL ((int)(sizeof KOL / sizeof KOL[0]))
 /* The uniform march: steps along the view x steps toward the sun, with the baked noise (the default; what a
