@@ -120,7 +120,7 @@ float extinction_anywhere(vec3 p)
 // segment from the surface into the core would take the rise for a linear one over the whole segment. With a thick
 // noisy boundary the ramps keep their share of the samples (the noise lives there).
 // Exact along the normal of a lone ellipsoid; along oblique rays the ramp is longer and the core's first segments
-// see the rest of it (cloud.frag's entry_ramp measures the entry ramp along the ray instead). The core's segments
+// see the rest of it (cloud.frag's core_entry measures the entry ramp along the ray instead). The core's segments
 // grow geometrically by r (1: uniform). The entry ramp (length rl_in, nr_in segments) and the exit ramp (rl_out,
 // nr_out) are apart: a view ray sees its entry ramp, the exit one only through the core.
 struct knots {
