@@ -118,7 +118,7 @@ help:
 	@echo "make sanitize     make check's tests built with ASan + UBSan (in $(B)/sanitize); make fuzz: libFuzzer"
 	@echo "make install      PREFIX=/usr/local LIBDIR DATADIR MANDIR DESTDIR; make uninstall with the same PREFIX"
 	@echo "make deps         build and run packages; deps-test, deps-vm, deps-fuzz, deps-plots: the rest"
-	@echo "make sweep        the speed/accuracy sweep (25 min); make refs: rewrite the reference images"
+	@echo "make sweep        the speed/accuracy sweep (30 min); make refs: rewrite the reference images"
 	@echo "make sweep-methods  Kol's method against the uniform ray march; make fit-octaves: the octave model's fit"
 	@echo "make bench-sky    what a field of clouds costs (ROUNDS=3 BENCH_SIZE=480x320); make sky-strip: README strip"
 	@echo "make platform-info  what this machine's packages allow (./configure's summary)"

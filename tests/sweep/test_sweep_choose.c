@@ -2,7 +2,8 @@
  * by the error on the cloud's pixels (result.error), not the whole image's, and never a point flatter than high
  * (sw_flatter: contrast further off, or SSIM lower), in the pick and in the greedy descent alike. Two variants of
  * ms.mode stand in for the sweep's table: "octaves", faster and with the smaller error, and "collector". And
- * ms.mode = diffusion, whose CPU solves the sweep's static frames do not time, is never a preset. */
+ * ms.mode = diffusion, whose CPU solves the sweep's static frames do not time, is a preset only when the timed
+ * frames turn the sun (--sun-step 0.5 or more: then they hold the solves). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -62,17 +63,24 @@ static int setup(void **st)
     return 0;
 }
 
-/* medium's pick (budget 0.5; low's budget 1 ends the descent before it starts) */
-static int medium_mode(void)
+/* medium's pick (budget 0.5; low's budget 1 ends the descent before it starts), the sun turned sun_step degrees a
+ * timed frame */
+static int medium_mode_at(double sun_step)
 {
     sweep sw;
     memset(&sw, 0, sizeof sw);
     sw.budget_med = 0.5, sw.budget_low = 1.0;
+    sw.sun_step = sun_step;
     point med, low, trail[SW_MAX_GREEDY];
     int ntrail = 0;
     assert_int_equal(sw_choose_presets(&sw, agg, vidx, &agg[0], &med, &low, trail, &ntrail), 0);
     assert_int_equal(ntrail, 0);
     return med.c.v[k_ms];
+}
+
+static int medium_mode(void)
+{
+    return medium_mode_at(0);
 }
 
 static void test_the_cloud_error_chooses(void **st)
@@ -120,8 +128,9 @@ static void test_the_descent_skips_a_flatter_change(void **st)
     assert_int_equal(low.c.v[k_ms], j_col);
 }
 
-/* Measured, reported, never chosen: diffusion (its solves are not in the timed frames) and the sun's maps made dearer
- * than high's (nor are they); the other multiple-scattering models and cheaper maps are eligible. */
+/* Measured, reported, never chosen from static frames: diffusion (its solves are not in them) and the sun's maps made
+ * dearer than high's (nor are they); the other multiple-scattering models and cheaper maps are eligible. From frames
+ * that turn the sun half a degree or more, all of them are. */
 static void test_eligible(void **st)
 {
     (void)st;
@@ -131,28 +140,44 @@ static void test_eligible(void **st)
         j_dif = strcmp(sw_knobs[k_ms].vals[j], "diffusion") == 0 ? j : j_dif;
     }
     assert_true(j_none >= 0 && j_dif >= 0);
-    assert_false(knob_preset_eligible(k_ms, j_dif));
-    assert_true(knob_preset_eligible(k_ms, j_oct) && knob_preset_eligible(k_ms, j_col));
-    assert_true(knob_preset_eligible(k_ms, j_none) && knob_preset_eligible(k_ms, sw_knobs[k_ms].high));
+    assert_false(knob_preset_eligible(k_ms, j_dif, 0));
+    assert_true(knob_preset_eligible(k_ms, j_dif, 1));
+    for (int t = 0; t < 2; t++) {
+        assert_true(knob_preset_eligible(k_ms, j_oct, t) && knob_preset_eligible(k_ms, j_col, t));
+        assert_true(knob_preset_eligible(k_ms, j_none, t) && knob_preset_eligible(k_ms, sw_knobs[k_ms].high, t));
+    }
     static const char *const maps[] = {"light.sun_samples", "light.sun_intervals", "quality.sun_map_size", "ms.blur"};
     for (size_t m = 0; m < sizeof maps / sizeof maps[0]; m++) {
         int k = -1;
         for (int i = 0; i < SW_NKNOBS; i++)
             k = sw_knob_is(i, maps[m]) ? i : k;
         assert_true(k >= 0);
-        for (int j = 0; j < sw_knobs[k].nvals; j++) /* the values are listed cheapest first */
-            assert_int_equal(knob_preset_eligible(k, j), j <= sw_knobs[k].high);
+        for (int j = 0; j < sw_knobs[k].nvals; j++) { /* the values are listed cheapest first */
+            assert_int_equal(knob_preset_eligible(k, j, 0), j <= sw_knobs[k].high);
+            assert_true(knob_preset_eligible(k, j, 1));
+        }
     }
-    /* the pick with diffusion measured best and within the budget: octaves, the best eligible point */
+    /* what stays out whatever the sun: content (no noise, another phase), one interval per pixel */
+    for (int k = 0; k < SW_NKNOBS; k++)
+        for (int j = 0; j < sw_knobs[k].nvals; j++)
+            if ((sw_knob_is(k, "quality.noise_octaves") && strcmp(sw_knobs[k].vals[j], "off") == 0) ||
+                (sw_knob_is(k, "cloud.phase") && j != sw_knobs[k].high) ||
+                (sw_knob_is(k, "quality.max_intervals") && strcmp(sw_knobs[k].vals[j], "1") == 0))
+                assert_false(knob_preset_eligible(k, j, 1));
+    /* the pick with diffusion measured best and within the budget: from static frames the octaves, the best eligible
+     * point; from frames turning the sun 0.3 degrees (no grid solved again in them) still the octaves; from 0.6
+     * degrees, diffusion */
     agg[0] = made(1.0, 0.30, 0.20, 0.75, 0.30);
     agg[1] = made(0.40, 0.25, 0.50, 0.76, 0.29);
     vidx[k_ms * SW_MAX_VALUES + j_col] = -1;
     vidx[k_ms * SW_MAX_VALUES + j_dif] = 2;
     agg[2] = made(0.45, 0.10, 0.10, 0.80, 0.20);
-    int got = medium_mode();
+    int still = medium_mode(), slow = medium_mode_at(0.3), turning = medium_mode_at(0.6);
     vidx[k_ms * SW_MAX_VALUES + j_dif] = -1;
     vidx[k_ms * SW_MAX_VALUES + j_col] = 2;
-    assert_int_equal(got, j_oct);
+    assert_int_equal(still, j_oct);
+    assert_int_equal(slow, j_oct);
+    assert_int_equal(turning, j_dif);
 }
 
 static void test_flatter(void **st)

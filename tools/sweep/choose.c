@@ -11,7 +11,8 @@
  * save at least 1 % of high's time is taken back and not tried again (the first run kept ms.sky_light = off, which
  * cost 0.12 in error and saved nothing once combined). Each preset is then the lowest-error measured point (one-knob
  * variant or greedy combination) within its budget; if none is, the fastest measured point (reported as over
- * budget), never a flatter one. Only knob_preset_eligible() values are taken. */
+ * budget), never a flatter one. Only knob_preset_eligible() values are taken: with the sun turned every frame
+ * (--sun-step of at least half a degree), the maps' and diffusion's costs are in the timed frames and they may be. */
 #include "sweep.h"
 #include <stdio.h>
 #include <string.h>
@@ -20,13 +21,13 @@
 /* The next change to try from cur: the knob and value with the least predicted error increase per time saved, or
  * -1 in *bk when no change saves time. */
 static void best_change(const config *cur, const result *single_agg, const int *vidx, const result *high,
-                        const unsigned char *banned, int *bk, int *bv)
+                        const unsigned char *banned, int sun_timed, int *bk, int *bv)
 {
     double best = 1e300;
     *bk = *bv = -1;
     for (int k = 0; k < SW_NKNOBS; k++)
         for (int j = 0; j < sw_knobs[k].nvals; j++) {
-            if (j == cur->v[k] || vidx[k * SW_MAX_VALUES + j] < 0 || !knob_preset_eligible(k, j) ||
+            if (j == cur->v[k] || vidx[k * SW_MAX_VALUES + j] < 0 || !knob_preset_eligible(k, j, sun_timed) ||
                 banned[k * SW_MAX_VALUES + j])
                 continue;
             int cj = cur->v[k];
@@ -59,7 +60,7 @@ int sw_flatter(const result *r, const result *high)
 /* The lowest-error measured point within budget and no flatter than high (or the fastest one no flatter, *found =
  * 0; high itself is never flatter than high). */
 static point pick(const result *single_agg, const int *vidx, const result *high, const point *trail, int ntrail,
-                  double budget, int *found, double *fastest)
+                  double budget, int sun_timed, int *found, double *fastest)
 {
     point best = {0}, fast = {0};
     *found = 0;
@@ -75,7 +76,7 @@ static point pick(const result *single_agg, const int *vidx, const result *high,
         } else {
             int k = (i - ntrail) / SW_MAX_VALUES, j = (i - ntrail) % SW_MAX_VALUES;
             if (k >= SW_NKNOBS || j >= sw_knobs[k].nvals || vidx[k * SW_MAX_VALUES + j] <= 0 ||
-                !knob_preset_eligible(k, j))
+                !knob_preset_eligible(k, j, sun_timed))
                 continue;
             config_high(&cand.c);
             cand.c.v[k] = j;
@@ -99,6 +100,9 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, cons
 {
     config cur;
     config_high(&cur);
+    /* the timed frames hold what a turning sun costs: the maps a band a frame and a diffusion grid solved again every
+     * half degree (within ms.frame_work a frame) */
+    int sun_timed = sw->sun_step >= 0.5;
     double t_cur = 1.0, e_cur = high->error;
     unsigned char banned[SW_NKNOBS * SW_MAX_VALUES];
     memset(banned, 0, sizeof banned);
@@ -107,7 +111,7 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, cons
         if (t_cur <= sw->budget_low)
             break;
         int bk, bv;
-        best_change(&cur, single_agg, vidx, high, banned, &bk, &bv);
+        best_change(&cur, single_agg, vidx, high, banned, sun_timed, &bk, &bv);
         if (bk < 0) {
             printf("sweep: presets: no single-knob change left that saves time (at %.2fx)\n", t_cur);
             break;
@@ -141,7 +145,7 @@ int sw_choose_presets(sweep *sw, const result *single_agg, const int *vidx, cons
     for (int q = 0; q < 2; q++) {
         int found;
         double fastest;
-        *pp[q] = pick(single_agg, vidx, high, trail, *ntrail, budget[q], &found, &fastest);
+        *pp[q] = pick(single_agg, vidx, high, trail, *ntrail, budget[q], sun_timed, &found, &fastest);
         if (!found)
             printf("sweep: presets: nothing measured within %.2fx; taking the fastest point (%.3fx)\n", budget[q],
                    fastest);

@@ -221,8 +221,9 @@ void config_sets_line(const config *c, char *out, size_t len)
 /* Presets keep the scene's content: a knob value that changes what the cloud is rather than how precisely it is
  * rendered (noise switched off, another phase function) is measured and reported but never chosen for a preset, even
  * when it lowers the error against the reference (the first sweep picked quality.noise = off for medium: smooth
- * clouds are easier to match, but they are not the scene). */
-int knob_preset_eligible(int k, int j)
+ * clouds are easier to match, but they are not the scene). sun_timed: the timed frames turn the sun every frame
+ * (cumulo-sweep --sun-step 0.5 or more), so they hold what the sun's maps and diffusion's solves cost. */
+int knob_preset_eligible(int k, int j, int sun_timed)
 {
     if (sw_knob_is(k, "cloud.phase"))
         return j == sw_knobs[k].high;
@@ -232,19 +233,20 @@ int knob_preset_eligible(int k, int j)
      * (scenes/field_noon.scene), content lost rather than precision; the sweep's views did not punish it */
     if (sw_knob_is(k, "quality.max_intervals"))
         return atoi(sw_knobs[k].vals[j]) >= 2;
-    /* a diffusion grid's solve runs on the CPU when a cloud's maps are made and again as the sun turns, outside the
-     * static frames the sweep times: every cloud of a field in its first frame (scenes/field_noon.scene: 35 solves,
-     * seconds), later up to ms.frame_work a frame and a coarse grid for each cloud new to the view (pass_msd.h). A
-     * preset chosen on frame time alone would hide that cost, so it is measured and reported but not chosen (README
-     * "Speed against accuracy") */
+    /* a diffusion grid's solve runs on the CPU when a cloud's maps are made and again as the sun turns: every cloud of
+     * a field in its first frame (scenes/field_noon.scene: 35 solves, seconds), later up to ms.frame_work a frame and
+     * a coarse grid for each cloud new to the view (pass_msd.h). Static frames hold none of it: a preset chosen on
+     * them would hide that cost, so there it is measured and reported but not chosen (README "Speed against
+     * accuracy"); frames that turn the sun hold the solves a turning sun brings */
     if (sw_knob_is(k, "ms.mode"))
-        return strcmp(sw_knobs[k].vals[j], "diffusion") != 0;
-    /* the sun's maps are made outside the static frames the sweep times (once for a still sun, a band a frame while it
-     * moves): a value that makes them dearer than high's looks free here (the 2026-12-06 sweep took 64 sun samples
-     * for low, twice its maps' cost, on a timing difference within the noise), so only high's or a cheaper one */
+        return sun_timed || strcmp(sw_knobs[k].vals[j], "diffusion") != 0;
+    /* the sun's maps are made outside static frames (once for a still sun, a band a frame while it moves): a value
+     * that makes them dearer than high's looks free there (the 2026-12-06 sweep took 64 sun samples for low, twice
+     * its maps' cost, on a timing difference within the noise), so only high's or a cheaper one, unless the frames
+     * turn the sun */
     if (sw_knob_is(k, "light.sun_samples") || sw_knob_is(k, "light.sun_intervals") ||
         sw_knob_is(k, "quality.sun_map_size") || sw_knob_is(k, "ms.blur"))
-        return j <= sw_knobs[k].high;
+        return sun_timed || j <= sw_knobs[k].high;
     /* the output resolution is the application's (--size), not a scene key a preset can carry */
     if (sw_knob_is(k, "output.scale"))
         return j == sw_knobs[k].high;

@@ -69,6 +69,17 @@ static int render_with(cli_session *s, cu_renderer *r, int w, int h)
     return 0;
 }
 
+/* A configuration's frame time from its timed frames (sorted on return): the median of still frames; with the sun
+ * turning (--sun-step) the mean, since a band of the maps, the energy closure and diffusion's solves come every few
+ * frames and the median would leave them out. */
+static double frame_time(const sweep *sw, double *t, int n)
+{
+    double m = sw_median(t, n), sum = 0;
+    for (int i = 0; i < n; i++)
+        sum += t[i];
+    return sw->sun_step > 0 ? sum / n : m;
+}
+
 /* The timing half: res[i].time_ms, tmin_ms and the ratios to cfg[0]. */
 static int time_view(sweep *sw, view *v, const config *cfg, int n, result *res)
 {
@@ -108,11 +119,11 @@ static int time_view(sweep *sw, view *v, const config *cfg, int n, result *res)
     for (int f = 0; f < sw->frames && rc == 0; f++)
         for (int j = 0; j < nsl && rc == 0; j++) {
             int k = (j + f) % nsl;
-            if (sw->sun_moving) {
+            if (sw->sun_moving || sw->sun_step > 0) {
                 double el, az;
                 cu_error e;
                 cu_renderer_get_sun(rr[k], &el, &az);
-                cu_renderer_set_sun(rr[k], el, az + (f % 2 ? 0.01 : -0.01), &e);
+                cu_renderer_set_sun(rr[k], el, az + (sw->sun_step > 0 ? sw->sun_step : f % 2 ? 0.01 : -0.01), &e);
             }
             double a = sw_now_ms();
             rc = render_with(&ts, rr[k], tw[k], th[k]);
@@ -122,7 +133,7 @@ static int time_view(sweep *sw, view *v, const config *cfg, int n, result *res)
         int i = slot[k];
         if (i == 0)
             continue;
-        res[i].time_ms = sw_median(t + (size_t)k * sw->frames, sw->frames);
+        res[i].time_ms = frame_time(sw, t + (size_t)k * sw->frames, sw->frames);
         res[i].tmin_ms = t[(size_t)k * sw->frames]; /* sorted by sw_median() */
     }
     if (rc == 0) {
@@ -131,7 +142,7 @@ static int time_view(sweep *sw, view *v, const config *cfg, int n, result *res)
             if (slot[k] == 0)
                 for (int f = 0; f < sw->frames; f++)
                     pool[np++] = t[(size_t)k * sw->frames + f];
-        res[0].time_ms = sw_median(pool, np);
+        res[0].time_ms = frame_time(sw, pool, np);
         res[0].tmin_ms = pool[0];
     }
     for (int k = 0; k < nsl && rr; k++)

@@ -112,7 +112,14 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
     fprintf(f, "Speed versus accuracy, %d views (%s", sw->nviews, sw->v[0].name);
     for (int s = 1; s < sw->nviews; s++)
         fprintf(f, ", %s", sw->v[s].name);
-    fprintf(f, "). Time: median frame time at %dx%d (%d frames after %d warm-up, wall clock incl. glFinish, %s, "
+    char sun[160];
+    if (sw->sun_step > 0)
+        snprintf(sun, sizeof sun, "the sun turned %g degrees every frame: the sun's maps, the energy closure and "
+                 "diffusion's solves in the frames", sw->sun_step);
+    else
+        snprintf(sun, sizeof sun, "%s", sw->sun_moving ? "sun moved every frame (the sun pass redone)"
+                                                       : "static sun: the sun pass is not in the frame");
+    fprintf(f, "). Time: %s frame time at %dx%d (%d frames after %d warm-up, wall clock incl. glFinish, %s, "
                "LP_NUM_THREADS=%s), as a ratio to `high` timed in the same session (high timed three times among the "
                "variants, frames interleaved round-robin), mean over views. Error: against cumulo-pt (%d spp) at "
                "%dx%d, both images clipped per channel where the display curve saturates (exposure·L/white = 16: the "
@@ -124,8 +131,7 @@ int sw_write_md(const sweep *sw, const result *agg, const int *vknob, const int 
                "peak = the reference's 99th-percentile channel value; visible = share of pixels whose tone-mapped "
                "8-bit sRGB differs by more than %d/255 in a channel. All means over views. Each knob is changed alone "
                "from `high` (= %s%s; quality.noise stays as each view sets it).\n\n",
-            sw->tw, sw->th, sw->frames, sw->warmup,
-            sw->sun_moving ? "sun moved every frame (the sun pass redone)" : "static sun: the sun pass is not in the frame",
+            sw->sun_step > 0 ? "mean" : "median", sw->tw, sw->th, sw->frames, sw->warmup, sun,
             lp ? lp : "(unset)", sw->spp, sw->ew, sw->eh, sw->threshold, default_high ? "the README defaults" :
             "the settings of ", default_high ? "" : sw->baseline);
     fprintf(f, "| knob | value | time ratio | time ratio, fastest frames | cloud rel. RMSE | Δ cloud rel. RMSE "

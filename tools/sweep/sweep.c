@@ -155,11 +155,12 @@ int sw_run(sweep *sw)
             return fprintf(stderr, "cumulo-sweep: cannot create %s: %s\n", dirs[i], strerror(errno)), 1;
     double t_start = sw_now_ms();
     const char *lp = getenv("LP_NUM_THREADS");
-    printf("sweep: %d views, error at %dx%d against the path tracer at %d spp, time at %dx%d (median of %d frames "
+    printf("sweep: %d views, error at %dx%d against the path tracer at %d spp, time at %dx%d (%s of %d frames "
            "after %d warm-up, %s), LP_NUM_THREADS=%s%s; high = %s\n",
-           sw->nviews, sw->ew, sw->eh, sw->spp, sw->tw, sw->th, sw->frames, sw->warmup,
-           sw->sun_moving ? "sun moved every frame" : "static sun", lp ? lp : "(unset)", sw->quick ? ", quick" : "",
-           sw->baseline);
+           sw->nviews, sw->ew, sw->eh, sw->spp, sw->tw, sw->th, sw->sun_step > 0 ? "mean" : "median", sw->frames,
+           sw->warmup, sw->sun_step > 0 ? "the sun turned every frame" : sw->sun_moving ? "sun moved every frame"
+                                                                            : "static sun",
+           lp ? lp : "(unset)", sw->quick ? ", quick" : "", sw->baseline);
     if (prepare_views(sw))
         return 1;
     if (sw->refs_only)

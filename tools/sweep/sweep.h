@@ -60,7 +60,7 @@ void config_diff(const config *c, char *out, size_t len, const char *sep);
 /* "--set a=b --set c=d ..." (and a note on the scale), as presets.txt writes it. */
 void config_sets_line(const config *c, char *out, size_t len);
 /* Whether value j of knob k may be part of a preset (it changes precision, not the scene's content). */
-int knob_preset_eligible(int k, int j);
+int knob_preset_eligible(int k, int j, int sun_timed);
 
 /* ---- the run's state ---- */
 typedef struct result {
@@ -101,6 +101,8 @@ typedef struct sweep {
     int ew, eh, tw, th;    /* error and timing sizes */
     int spp, frames, warmup, quick, threshold, pt_threads;
     int sun_moving;        /* --sun-every-frame: time frames that redo the sun pass, as `cumulo bench` does */
+    double sun_step;       /* --sun-step DEG: every timed frame turns the sun DEG further (the maps made again a band a
+                            * frame, diffusion's grids solved again within ms.frame_work); the mean frame is timed */
     int refs_only;
     int methods;           /* --methods: Kol's method against the uniform ray march (methods.c) */
     int fit;               /* --fit-octaves: the octave model fitted to the path tracer (fit.c) */
