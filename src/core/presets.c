@@ -12,12 +12,12 @@ static const char *const SETTINGS[CU_PRESET_COUNT] = {
     /* medium */
     "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
-    "light.sun_samples=32;light.sun_filter=nearest;ms.mode=octaves;ms.blur=200;ms.sky_light=on;ms.closure=on;"
+    "light.sun_samples=32;light.sun_filter=nearest;ms.mode=diffusion;ms.blur=400;ms.sky_light=on;ms.closure=on;"
     "quality.integration=exponential;quality.cloud_downsample=1",
     /* low */
-    "quality.segments=2;quality.segment_ratio=1.6;quality.hull_tessellation=6;quality.max_intervals=6;"
+    "quality.segments=5;quality.segment_ratio=1.6;quality.hull_tessellation=10;quality.max_intervals=6;"
     "quality.noise_octaves=5;quality.sun_map_size=128;light.shadow=peel;light.sun_intervals=3;"
-    "light.sun_samples=32;light.sun_filter=nearest;ms.mode=octaves;ms.blur=200;ms.sky_light=on;ms.closure=on;"
+    "light.sun_samples=32;light.sun_filter=nearest;ms.mode=diffusion;ms.blur=400;ms.sky_light=on;ms.closure=on;"
     "quality.integration=exponential;quality.cloud_downsample=2",
 };
 

@@ -79,7 +79,7 @@ for s in "thin 100 5" "thick 400 62"; do
   $PT "$T/$1.scene" -o "$T/$1_pt.pfm" --spp 4096 -q 2>"$T/err" || { cat "$T/err" >&2; t_fail "$1: path tracer" "failed"; continue; }
   $C render "$T/$1.scene" -o "$T/$1_diffusion.pfm" --set quality.preset=high --set ms.mode=diffusion -v \
     >/dev/null 2>"$T/$1_log" || { cat "$T/$1_log" >&2; t_fail "$1: render" "failed"; continue; }
-  $C render "$T/$1.scene" -o "$T/$1_octaves.pfm" --set quality.preset=medium >/dev/null 2>&1
+  $C render "$T/$1.scene" -o "$T/$1_octaves.pfm" --set quality.preset=medium --set ms.mode=octaves >/dev/null 2>&1
   pt=$(mean "$T/$1_pt.pfm"); di=$(mean "$T/$1_diffusion.pfm"); oc=$(mean "$T/$1_octaves.pfm")
   if grep -q "ms.mode = diffusion: .* sweeps" "$T/$1_log"; then t_ok "$1 slab: the diffusion grid is solved"
   else t_fail "$1 slab: the diffusion grid is solved" "no solve in the debug log"; fi

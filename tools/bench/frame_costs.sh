@@ -4,7 +4,9 @@
 # the default cumulus: the cloud view; the camera turned away from the cloud (look_at behind it); the sun turned
 # 0.01 degree every frame (cumulo bench --sun-every-frame: a slow knob, or the time of day; the maps follow it every
 # fifth frame) and 0.6 degree every frame (--sun-step 0.6: a knob turned fast, 18 degrees a second at 30 fps; the maps
-# are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every frame).
+# are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every half
+# degree, within ms.frame_work a frame). The row "ms.mode = octaves" is medium with the octaves' multiple scattering
+# instead of diffusion's (the presets before 2026-12-06's sweep of a turning sun).
 # Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads
 # and caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
 # closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as
@@ -20,12 +22,12 @@ S=scenes/cumulus.scene
 T=${TMPDIR:-/tmp}/cumulo-fc-bench.$$
 mkdir -p "$T"
 trap 'rm -rf "$T"' EXIT
-CONFIGS="high medium exact low low8 whole diffusion uniform"
+CONFIGS="high medium exact low low8 whole octaves uniform"
 sets() {
   case $1 in
     uniform) echo "--set quality.method=uniform --set ms.mode=octaves --set quality.uniform_steps=16 \
 --set quality.uniform_sun_steps=4 --set quality.noise_baked=on" ;;
-    diffusion) echo "--set quality.preset=medium --set ms.mode=diffusion" ;;
+    octaves) echo "--set quality.preset=medium --set ms.mode=octaves" ;;
     whole) echo "--set quality.preset=medium --set quality.sun_map_frames=1" ;;
     exact) echo "--set quality.preset=medium --set quality.sky_grid=0" ;;
     low8) echo "--set quality.preset=low --set quality.sun_map_frames=8" ;;
@@ -58,7 +60,7 @@ for c in $CONFIGS; do
   a=$(med "$c" cloud); b=$(med "$c" empty); s=$(med "$c" sun); f=$(med "$c" fast)
   label=$c
   [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
-  [ "$c" = diffusion ] && label="medium, ms.mode = diffusion"
+  [ "$c" = octaves ] && label="medium, ms.mode = octaves"
   [ "$c" = whole ] && label="medium, sun_map_frames = 1"
   [ "$c" = exact ] && label="medium, sky_grid = 0"
   [ "$c" = low8 ] && label="low, sun_map_frames = 8"

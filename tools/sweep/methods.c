@@ -32,15 +32,22 @@ static const struct {
     {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments", 0},
     {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments", 0},
     {CU_PRESET_LOW, "", "low", 0},
-    /* the opacity map read at the nearest texel: a quarter of the lookups of the bilinear default */
-    {CU_PRESET_MEDIUM, "light.sun_filter=nearest", "medium, nearest sun map", 0},
-    {CU_PRESET_MEDIUM, "quality.segments=2;light.sun_filter=nearest", "medium, 2 segments, nearest sun map", 0},
-    {CU_PRESET_LOW, "light.sun_filter=nearest", "low, nearest sun map", 0},
-    /* multiple scattering from each cloud's diffusion solution (ms.mode = diffusion) in place of the preset's */
+    /* low made cheaper still: fewer segments and a coarser hull, the clouds at 1/3 resolution */
+    {CU_PRESET_LOW, "quality.segments=2;quality.hull_tessellation=6", "low, 2 segments, hull 6", 0},
+    {CU_PRESET_LOW, "quality.cloud_downsample=3", "low, 1/3 resolution", 0},
+    {CU_PRESET_LOW, "quality.cloud_downsample=3;quality.segments=2;quality.hull_tessellation=6",
+     "low, 1/3 resolution, 2 segments, hull 6", 0},
+    /* the opacity map read bilinear (high's) instead of at its nearest texel */
+    {CU_PRESET_MEDIUM, "light.sun_filter=bilinear", "medium, bilinear sun map", 0},
+    /* the fitted octaves in place of the presets' diffusion: the presets before the sweep timed a turning sun
+     * (2026-12-06); "low, octaves, 2 segments, hull 6" is that low */
+    {CU_PRESET_MEDIUM, "ms.mode=octaves;ms.blur=200", "medium, octaves", 0},
+    {CU_PRESET_MEDIUM, "ms.mode=octaves;ms.blur=200;quality.segments=2", "medium, octaves, 2 segments", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200", "low, octaves", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200;quality.segments=2;quality.hull_tessellation=6",
+     "low, octaves, 2 segments, hull 6", 0},
+    /* multiple scattering from each cloud's diffusion solution in place of high's slab model */
     {CU_PRESET_HIGH, "ms.mode=diffusion", "high, diffusion", 0},
-    {CU_PRESET_MEDIUM, "ms.mode=diffusion", "medium, diffusion", 0},
-    {CU_PRESET_MEDIUM, "ms.mode=diffusion;quality.segments=2", "medium, diffusion, 2 segments", 0},
-    {CU_PRESET_LOW, "ms.mode=diffusion", "low, diffusion", 0},
     /* the slab model at its cheapest: few segments, small maps, a coarse hull */
     {CU_PRESET_HIGH, "quality.segments=2;quality.sun_map_size=64;quality.hull_tessellation=6", "high, 2 segments, "
      "64^2 maps, hull 6", 0},
@@ -54,9 +61,9 @@ static const struct {
     /* the entry ramp marched in 8 m steps (quality.ramp_step): single scattering where the path tracer puts it */
     {CU_PRESET_HIGH, "quality.ramp_step=8", "high, entry ramp 8 m", 0},
     {CU_PRESET_MEDIUM, "quality.ramp_step=8", "medium, entry ramp 8 m", 0},
-    {CU_PRESET_MEDIUM, "ms.mode=diffusion;quality.segments=2;quality.ramp_step=8",
-     "medium, diffusion, 2 segments, entry ramp 8 m", 0},
-    {CU_PRESET_LOW, "ms.mode=diffusion;quality.ramp_step=8", "low, diffusion, entry ramp 8 m", 0},
+    {CU_PRESET_MEDIUM, "quality.segments=2;quality.ramp_step=8", "medium, 2 segments, entry ramp 8 m", 0},
+    {CU_PRESET_LOW, "quality.ramp_step=8", "low, entry ramp 8 m", 0},
+    {CU_PRESET_MEDIUM, "ms.mode=octaves;ms.blur=200;quality.ramp_step=8", "medium, octaves, entry ramp 8 m", 0},
 };
 #define N_KOL ((int)(sizeof KOL / sizeof KOL[0]))
 /* The uniform march: steps along the view x steps toward the sun, with the baked noise (the default; what a
