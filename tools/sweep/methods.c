@@ -32,11 +32,14 @@ static const struct {
     {CU_PRESET_MEDIUM, "quality.segments=3", "medium, 3 segments", 0},
     {CU_PRESET_MEDIUM, "quality.segments=2", "medium, 2 segments", 0},
     {CU_PRESET_LOW, "", "low", 0},
-    /* low made cheaper still: fewer segments and a coarser hull, the clouds at 1/3 resolution */
+    /* medium and low made cheaper still: fewer segments and a coarser hull, the clouds at 1/3 and 1/4 resolution */
+    {CU_PRESET_MEDIUM, "quality.segments=2;quality.hull_tessellation=6", "medium, 2 segments, hull 6", 0},
     {CU_PRESET_LOW, "quality.segments=2;quality.hull_tessellation=6", "low, 2 segments, hull 6", 0},
     {CU_PRESET_LOW, "quality.cloud_downsample=3", "low, 1/3 resolution", 0},
     {CU_PRESET_LOW, "quality.cloud_downsample=3;quality.segments=2;quality.hull_tessellation=6",
      "low, 1/3 resolution, 2 segments, hull 6", 0},
+    {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=2;quality.hull_tessellation=6",
+     "low, 1/4 resolution, 2 segments, hull 6", 0},
     /* the opacity map read bilinear (high's) instead of at its nearest texel */
     {CU_PRESET_MEDIUM, "light.sun_filter=bilinear", "medium, bilinear sun map", 0},
     /* the fitted octaves in place of the presets' diffusion: the presets before the sweep timed a turning sun
