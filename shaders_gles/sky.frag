@@ -58,8 +58,15 @@ out vec4 o_color;
 // bilinear from the four nearest of its texels, as upsample.frag does without a host depth.
 uniform highp sampler2D u_clouds;
 uniform float u_cloud_factor;  // output pixels per texel of the cloud image
+uniform bool u_refined_on;     // quality.edge_refine: u_refined holds the marked pixels at full resolution
+uniform highp sampler2D u_refined; // premultiplied; alpha 2 where not marked (pass_refine.h)
 vec4 clouds_at(vec2 frag)
 {
+    if (u_refined_on) {
+        vec4 r = texelFetch(u_refined, ivec2(frag), 0);
+        if (r.a <= 1.5)
+            return r;
+    }
     vec2 q = frag / u_cloud_factor - 0.5;
     ivec2 t0 = ivec2(floor(q)), size = textureSize(u_clouds, 0);
     vec2 f = q - floor(q);

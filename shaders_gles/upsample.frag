@@ -12,6 +12,8 @@ uniform bool u_depth_on;
 uniform highp sampler2D u_depth;   // the host's window depth at full resolution
 uniform float u_depth_clear;       // its clear value: no surface (the sky)
 uniform vec3 u_lin;                // z_ndc -> eye distance: perspective -B / (z_ndc + A) (u_lin.z = 0) or ortho
+uniform bool u_refined_on;          // quality.edge_refine: u_refined holds the marked pixels at full resolution
+uniform highp sampler2D u_refined; // premultiplied; alpha 2 where not marked (pass_refine.h)
 out vec4 o_color;
 
 float dist_at(ivec2 p)
@@ -31,6 +33,15 @@ void main()
         if (o_color.a <= 0.0 && all(equal(o_color.rgb, vec3(0.0))))
             discard;
         return;
+    }
+    if (u_refined_on) {
+        vec4 r = texelFetch(u_refined, p, 0);
+        if (r.a <= 1.5) {
+            o_color = r;
+            if (o_color.a <= 0.0 && all(equal(o_color.rgb, vec3(0.0))))
+                discard;
+            return;
+        }
     }
     ivec2 lsize = textureSize(u_low, 0);
     float n = float(u_factor);

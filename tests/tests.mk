@@ -45,8 +45,9 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 # one-pass composite of low-resolution clouds; test_impostor: clouds drawn from impostors against the full render;
 # test_sun_bands: a creeping sun's maps made a band a frame against whole maps; test_ground_drift: the ground's
 # shadow following clouds on the wind against whole renders; test_msd_frames: diffusion grids solved again over
-# frames against the same solve in one).
-$(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift msd_frames,\
+# frames against the same solve in one; test_edge_refine: quality.edge_refine against full-resolution frames).
+$(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift msd_frames \
+  edge_refine,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
 CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
 # Where on screen a cloud can be (camera.c), against points of its bounds from random views: no GL.

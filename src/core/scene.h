@@ -100,6 +100,8 @@ struct cu_scene {
     double boundary_step;     /* m: a chord that never reaches the core is marched in steps of at most this (0: off) */
     double ramp_step;         /* m: a chord's entry ramp is marched in steps of at most this (0: Kol's share) */
     int cloud_downsample;     /* 1..4: the cloud pass at 1/N resolution, upsampled (pass_upsample.c) */
+    double edge_refine;       /* with cloud_downsample > 1: pixels whose low-resolution neighbourhood differs by
+                               * more than this are marched again at full resolution (pass_refine.c); 0: off */
     int temporal_grid;        /* 1..4: each frame marches 1 of G x G cloud pixels, the rest reprojected
                                * (pass_temporal.c); 1: every pixel every frame */
     double target_fps;        /* the frame budget (0: off): the renderer measures its frames and moves cloud_downsample

@@ -219,6 +219,32 @@ static void clouds_ndc_rect(const cu_renderer *r, int visible, double u[4])
     }
 }
 
+/* Each cloud in view, back to front, into the bound target (the frame's, the low-resolution one, the temporal grid's
+ * or, with ctx->refining, the edge refinement's); dt: how far back the last frame is, for the clouds' motion. */
+static void draw_clouds(cu_renderer *r, int visible, double dt)
+{
+    cu_gl *gl = &r->gl;
+    cu_gpu_scene *ctx = &r->ctx;
+    int depth_used = 0;
+    for (int j = 0; j < visible; j++) {
+        cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
+        cu_frame_bind_cloud(r, sl);
+        sl->cloud.ke = sl->ke_rest;
+        ctx->camera = r->cams[r->order[j]];
+        ctx->motion[0] = (float)(sl->wind.x * dt);
+        ctx->motion[1] = (float)(sl->wind.z * dt);
+        if (sl->imp.in_use) { /* small on screen: its image (quality.impostor_pixels) */
+            cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
+            continue;
+        }
+        if (depth_used) /* each cloud's depth pre-pass and stencil of its own (refining: the marks stay, pass_refine.h) */
+            gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+        depth_used = 1;
+        int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
+        cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
+    }
+}
+
 static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
 {
     cu_gl *gl = &r->gl;
@@ -315,37 +341,39 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     ctx->host_scale = n;
     double dt = g > 1 ? r->time - r->pass_temporal.prev_time : 0.0;
-    int depth_used = 0;
-    for (int j = 0; j < visible; j++) {
-        cu_cloud_slot *sl = &r->clouds.slot[r->order[j]];
-        cu_frame_bind_cloud(r, sl);
-        sl->cloud.ke = sl->ke_rest;
-        ctx->camera = r->cams[r->order[j]];
-        ctx->motion[0] = (float)(sl->wind.x * dt);
-        ctx->motion[1] = (float)(sl->wind.z * dt);
-        if (sl->imp.in_use) { /* small on screen: its image (quality.impostor_pixels) */
-            cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
-            continue;
-        }
-        if (depth_used) /* each cloud's depth pre-pass and stencil of its own */
-            gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-        depth_used = 1;
-        int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
-        cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
-    }
+    draw_clouds(r, visible, dt);
     /* The context keeps the nearest cloud's camera (what tests and a debugger see of "this frame"), or says that no
      * cloud was in view. */
     if (visible == 0)
         ctx->camera.visible = 0;
-    cu_profile_mark(r, CU_PASS_CLOUDS);
     temporal_frame_identity(ctx);
-    GLuint image = 0;
+    GLuint image = 0, refined = 0;
+    /* the pixels the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads; without
+     * the one-pass composite, the upsampling covers the frame */
+    int reach[4] = {0, 0, f->width, f->height};
+    if (over)
+        cu_ndc_rect_pixels(cloud_rect, f->width, f->height, (g + 3) * n, reach);
     if (g > 1) {
         cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time, cloud_rect);
         image = cu_pass_temporal_image(&r->pass_temporal);
     } else if (n > 1) {
         image = r->pass_upsample.low.tex[0];
+        /* quality.edge_refine: the pixels whose low-resolution neighbours differ, marched again at full resolution */
+        if (r->scene.edge_refine > 0 && r->pass_refine.prog) {
+            if (cu_pass_refine_begin(&r->pass_refine, ctx, image, f->width, f->height, n, r->scene.edge_refine,
+                                     reach, r->pass_tonemap.hdr.format, err))
+                return 1;
+            cu_camera nearest = ctx->camera;
+            ctx->host_scale = 1;
+            ctx->refining = 1;
+            draw_clouds(r, visible, 0.0);
+            ctx->refining = 0;
+            ctx->camera = nearest;
+            cu_pass_refine_end(&r->pass_refine, gl);
+            refined = r->pass_refine.full.tex[0];
+        }
     }
+    cu_profile_mark(r, CU_PASS_CLOUDS);
     ctx->ke_scale = 1;
     if (over) { /* visible > 0 here: n and g are 1 without a cloud in view */
         cu_camera nearest = ctx->camera;
@@ -358,10 +386,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         gl->Disable(GL_BLEND);
         gl->Disable(GL_STENCIL_TEST);
         gl->Disable(GL_DEPTH_TEST);
-        /* the pixels the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads */
-        int reach[4];
-        cu_ndc_rect_pixels(cloud_rect, f->width, f->height, (g + 3) * n, reach);
-        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, n, reach, err))
+        if (cu_pass_sky_draw_over(&r->pass_sky, ctx, image, refined, n, reach, err))
             return 1;
         ctx->camera = nearest;
         ctx->cloud = nearest_cloud;
@@ -370,7 +395,8 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
         return e != GL_NO_ERROR ? cu_fail(err, "render: GL error 0x%x", e) : 0;
     }
     if (image) {
-        cu_pass_upsample_draw(&r->pass_upsample, ctx, image, r->pass_tonemap.hdr.fbo, f->width, f->height, n, proj.m);
+        cu_pass_upsample_draw(&r->pass_upsample, ctx, image, refined, r->pass_tonemap.hdr.fbo, f->width, f->height, n,
+                              proj.m);
         cu_profile_mark(r, CU_PASS_UPSAMPLE);
     }
     cu_pass_tonemap_draw(&r->pass_tonemap, ctx, f->fbo, f->linear, f->clouds_only);

@@ -16,12 +16,17 @@ struct cu_collector;
 /* The ground's shadow maps: clouds on up to this many winds move their shadows without remaking them. */
 #define CU_GROUND_MAPS 2
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
+/* The stencil bit of the pixels quality.edge_refine leaves to the upsampled image (pass_refine.h); the cloud pass's
+ * own counting keeps to the bits below it. */
+#define CU_REFINE_SKIP 0x80u
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
        CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the
        ground's in the sky pass */, CU_UNIT_SKY = 12 /* the sky pass's Perez tables */,
        CU_UNIT_CLOUDS = 13 /* the cloud image the sky pass composites (pass_sky.h: cu_pass_sky_draw_over) */,
        CU_UNIT_MSD = 14 /* the cloud's diffusion grid (ms.mode = diffusion, pass_msd.h) */,
-       CU_UNIT_GROUND2 = 15 /* the sky pass's second ground shadow map */ };
+       CU_UNIT_GROUND2 = 15 /* the sky pass's second ground shadow map */,
+       CU_UNIT_REFINED = 14 /* quality.edge_refine's image, where the composites read it (sky.frag, upsample.frag): a 2D
+       texture on the diffusion grid's unit, which holds a 3D one; a unit's targets are bound apart */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
  * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
@@ -96,6 +101,8 @@ typedef struct cu_gpu_scene {
     cu_host_depth host_depth;/* this frame's */
     int width, height;       /* this frame's size */
     int host_scale;          /* frame pixels per pixel of the pass drawing (quality.cloud_downsample), 1 or N */
+    int refining;            /* quality.edge_refine's full-resolution pass (pass_refine.h): draw only where the
+                              * stencil bit CU_REFINE_SKIP is clear */
     /* quality.temporal_grid: the cloud pass draws one pixel of each G x G block into a target of its own (pass_w x
      * pass_h; 0: the frame's, at 1/host_scale) with a projection shifted onto those pixels; px_map takes its pixels
      * to the cloud image's (xy * px_map.xy + px_map.zw), motion is how far the cloud now drawn moved since the last

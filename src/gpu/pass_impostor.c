@@ -69,7 +69,13 @@ void cu_pass_impostor_draw(const cu_pass_impostor *p, const cu_gpu_scene *ctx, c
     gl->BindSampler(CU_UNIT_CLOUDS, p->sampler);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->Disable(GL_DEPTH_TEST);
-    gl->Disable(GL_STENCIL_TEST);
+    if (ctx->refining) { /* only the pixels quality.edge_refine marked */
+        gl->Enable(GL_STENCIL_TEST);
+        gl->StencilFunc(GL_EQUAL, 0, CU_REFINE_SKIP);
+        gl->StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    } else {
+        gl->Disable(GL_STENCIL_TEST);
+    }
     gl->Enable(GL_BLEND);
     gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied, as the cloud pass */
     gl->BindVertexArray(ctx->empty_vao);

@@ -11,10 +11,11 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
     cu_sun_locs_get(gl, prog, &l->sun);
 #define LOC(f) l->f = cu_gpu_loc(gl, prog, "u_" #f)
     LOC(inv_viewproj); LOC(sun_irr); LOC(out_max); LOC(ground); LOC(out_scale); LOC(sky_color);
-    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(gmap2); LOC(shadow_g); LOC(cloud_factor);
+    LOC(ground_sun); LOC(eye); LOC(gmap); LOC(gmap2); LOC(shadow_g); LOC(cloud_factor); LOC(refined_on);
     LOC(grid_box); LOC(grid_cell); LOC(grid_size); LOC(grid_cols);
 #undef LOC
     cu_gpu_unit(gl, prog, "u_clouds", CU_UNIT_CLOUDS);
+    cu_gpu_unit(gl, prog, "u_refined", CU_UNIT_REFINED);
     cu_gpu_unit(gl, prog, "u_ground_tau", CU_UNIT_SHADOW);
     cu_gpu_unit(gl, prog, "u_ground_tau2", CU_UNIT_GROUND2);
     cu_gpu_unit(gl, prog, "u_sky_tables", CU_UNIT_SKY);
@@ -103,6 +104,7 @@ static void uniforms(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, co
     gl->Uniform3f(p->gmap2, (float)ctx->ground_map[1].x, (float)ctx->ground_map[1].y, (float)ctx->ground_map[1].z);
     gl->Uniform1f(p->shadow_g, (float)cu_shadow_g(ctx));
     gl->Uniform1f(p->cloud_factor, (float)factor); /* -1 (no composite): ignored */
+    gl->Uniform1i(p->refined_on, pass->refined);
     float os[3];
     cu_out_scale(ctx, os);
     gl->Uniform3f(p->out_scale, os[0], os[1], os[2]);
@@ -365,12 +367,17 @@ int cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output, 
     return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, everywhere, err);
 }
 
-int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rect[4],
-                          cu_error *err)
+int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, GLuint refined, int factor,
+                          const int rect[4], cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
     gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_CLOUDS);
     gl->BindTexture(GL_TEXTURE_2D, clouds);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_REFINED);
+    gl->BindTexture(GL_TEXTURE_2D, refined);
     gl->ActiveTexture(GL_TEXTURE0);
-    return draw(pass, ctx, CU_SKY_OVER, factor, rect, err);
+    pass->refined = refined != 0;
+    int rc = draw(pass, ctx, CU_SKY_OVER, factor, rect, err);
+    pass->refined = 0;
+    return rc;
 }

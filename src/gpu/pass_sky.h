@@ -8,7 +8,7 @@
 typedef struct cu_sky_locs {
     cu_sun_locs sun;
     GLint inv_viewproj, sun_irr, out_max, ground, out_scale, sky_color;
-    GLint ground_sun, eye, gmap, gmap2, shadow_g, cloud_factor;
+    GLint ground_sun, eye, gmap, gmap2, shadow_g, cloud_factor, refined_on;
     GLint grid_box, grid_cell, grid_size, grid_cols;
 } cu_sky_locs;
 
@@ -32,6 +32,7 @@ typedef struct cu_pass_sky {
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
     int tables_built;
+    int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */
 } cu_pass_sky;
 
 int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defines, cu_error *err);
@@ -41,7 +42,8 @@ void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl);
 int cu_pass_sky_draw(cu_pass_sky *p, const cu_gpu_scene *ctx, int to_output, cu_error *err);
 /* The sky with a cloud image (1/factor of the frame's size, premultiplied) over it, tone-mapped, into the bound
  * target: the frame's last pass when the clouds were drawn at a lower resolution or on the temporal grid. Pixels
- * outside rect (x0, y0, x1, y1, half-open), which the image cannot reach, are drawn without it (the same colours). */
-int cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, int factor, const int rect[4],
-                          cu_error *err);
+ * outside rect (x0, y0, x1, y1, half-open), which the image cannot reach, are drawn without it (the same colours).
+ * refined (0: none): quality.edge_refine's full-resolution image, taken instead where its alpha is at most 1. */
+int cu_pass_sky_draw_over(cu_pass_sky *p, const cu_gpu_scene *ctx, GLuint clouds, GLuint refined, int factor,
+                          const int rect[4], cu_error *err);
 #endif

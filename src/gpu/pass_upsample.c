@@ -13,8 +13,10 @@ int cu_pass_upsample_create(cu_pass_upsample *p, const cu_gpu_scene *ctx, cu_err
     p->depth_on = cu_gpu_loc(gl, p->prog, "u_depth_on");
     p->depth_clear = cu_gpu_loc(gl, p->prog, "u_depth_clear");
     p->lin = cu_gpu_loc(gl, p->prog, "u_lin");
+    p->refined_on = cu_gpu_loc(gl, p->prog, "u_refined_on");
     cu_gpu_unit(gl, p->prog, "u_low", 0);
     cu_gpu_unit(gl, p->prog, "u_depth", CU_UNIT_HOST_DEPTH);
+    cu_gpu_unit(gl, p->prog, "u_refined", CU_UNIT_REFINED);
     gl->GenSamplers(1, &p->depth_sampler); /* the host's filtering and compare mode are not ours to rely on */
     gl->SamplerParameteri(p->depth_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->SamplerParameteri(p->depth_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -52,8 +54,8 @@ int cu_pass_upsample_begin(cu_pass_upsample *p, const cu_gpu_scene *ctx, int w, 
     return 0;
 }
 
-void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint hdr, int w, int h,
-                           int n, const double *proj)
+void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint refined, GLuint hdr,
+                           int w, int h, int n, const double *proj)
 {
     const cu_gl *gl = ctx->gl;
     gl->BindFramebuffer(GL_FRAMEBUFFER, hdr);
@@ -75,6 +77,9 @@ void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, G
         int ortho = proj[11] == 0.0;
         gl->Uniform3f(p->lin, (float)proj[10], (float)proj[14], ortho ? 1.0f : 0.0f);
     }
+    gl->Uniform1i(p->refined_on, refined != 0);
+    gl->ActiveTexture(GL_TEXTURE0 + CU_UNIT_REFINED);
+    gl->BindTexture(GL_TEXTURE_2D, refined);
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindTexture(GL_TEXTURE_2D, low);
     gl->BindVertexArray(ctx->empty_vao);

@@ -7,7 +7,7 @@
 
 typedef struct cu_pass_upsample {
     GLuint prog;
-    GLint factor, depth_on, depth_clear, lin;
+    GLint factor, depth_on, depth_clear, lin, refined_on;
     GLuint depth_sampler;
     cu_target low;             /* premultiplied cloud radiance and coverage, with its own depth and stencil */
 } cu_pass_upsample;
@@ -20,7 +20,8 @@ int  cu_pass_upsample_begin(cu_pass_upsample *p, const cu_gpu_scene *ctx, int w,
                             cu_error *err);
 /* Blends the low-resolution clouds (low: the target's own texture, or the temporal grid's image) over what `hdr`
  * holds, at w x h. proj: the frame's projection (column-major), whose z rows turn the host's window depth into
- * distances when ctx has the host's depth. */
-void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint hdr, int w, int h,
-                           int n, const double *proj);
+ * distances when ctx has the host's depth. refined (0: none): quality.edge_refine's full-resolution image, taken
+ * instead where its alpha is at most 1 (pass_refine.h). */
+void cu_pass_upsample_draw(const cu_pass_upsample *p, const cu_gpu_scene *ctx, GLuint low, GLuint refined, GLuint hdr,
+                           int w, int h, int n, const double *proj);
 #endif

@@ -106,6 +106,7 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_sky_destroy(&r->pass_sky, gl);
     cu_pass_tonemap_destroy(&r->pass_tonemap, gl);
     cu_pass_upsample_destroy(&r->pass_upsample, gl);
+    cu_pass_refine_destroy(&r->pass_refine, gl);
     cu_pass_temporal_destroy(&r->pass_temporal, gl);
     cu_pass_impostor_destroy(&r->pass_impostor, gl);
     r->impostors_made = 0;
@@ -205,6 +206,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err) ||
         (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)) ||
         ((most_d > 1 || most_g > 1) && cu_pass_upsample_create(&r->pass_upsample, ctx, err)) ||
+        (most_d > 1 && r->scene.edge_refine > 0 && cu_pass_refine_create(&r->pass_refine, ctx, err)) ||
         (most_g > 1 && cu_pass_temporal_create(&r->pass_temporal, ctx, err)) ||
         (r->scene.impostor_pixels > 0 && r->clouds.n > 0 && cu_pass_impostor_create(&r->pass_impostor, ctx, d.hull, err)))
         return 1;

@@ -8,6 +8,7 @@
 #include "pass_clock.h"
 #include "pass_cloud.h"
 #include "pass_energy.h"
+#include "pass_refine.h"
 #include "pass_shadow.h"
 #include "pass_sky.h"
 #include "pass_slab.h"
@@ -68,6 +69,7 @@ struct cu_renderer {
     cu_pass_cloud pass_cloud_far; /* a field's clouds smaller on screen than quality.lod_pixels (none: prog 0) */
     cu_pass_tonemap pass_tonemap;
     cu_pass_upsample pass_upsample; /* quality.cloud_downsample > 1 or temporal_grid > 1: the cloud image brought up */
+    cu_pass_refine pass_refine;     /* quality.edge_refine with cloud_downsample > 1: its pixels again at full size */
     cu_pass_temporal pass_temporal; /* quality.temporal_grid > 1 (prog 0 otherwise) */
     int temporal_off_said;          /* the log line saying why the grid is not used this scene */
     cu_pass_impostor pass_impostor; /* quality.impostor_pixels > 0 (prog 0 otherwise) */

@@ -13,12 +13,16 @@
 #include <string.h>
 #include <cmocka.h>
 
+static double edge_refine; /* quality.edge_refine for the frames of use_downsample (0: off) */
+
 static void use_downsample(int n)
 {
-    char set[64];
+    char set[64], refine[64];
     cu_error e;
     snprintf(set, sizeof set, "quality.cloud_downsample=%d", n);
-    if (cu_scene_set(host_scene, set, &e) || cu_renderer_set_scene(host_ctx.r, host_scene, &e))
+    snprintf(refine, sizeof refine, "quality.edge_refine=%.9g", edge_refine);
+    if (cu_scene_set(host_scene, set, &e) || cu_scene_set(host_scene, refine, &e) ||
+        cu_renderer_set_scene(host_ctx.r, host_scene, &e))
         fail_msg("%s: %s", set, e.msg);
 }
 
@@ -121,10 +125,23 @@ static void test_no_halo_against_sky(void **st)
 }
 
 /* Against the host's depth: a quad 300 m from the eye over x < W/2, the cloud behind it from about 700 m. Every
- * pixel of the quad keeps the host's colour exactly, up to its edge; right of the edge the cloud is there. */
+ * pixel of the quad keeps the host's colour exactly, up to its edge; right of the edge the cloud is there. The same
+ * with quality.edge_refine near 0 (every pixel a cloud reaches marched again at full resolution, against the host's
+ * depth at that pixel): pass_refine.c through upsample.frag. */
+static void host_edge(void);
 static void test_no_halo_at_host_edge(void **st)
 {
     (void)st;
+    edge_refine = 0;
+    host_edge();
+    edge_refine = 1e-6;
+    host_edge();
+    edge_refine = 0;
+    use_downsample(1);
+}
+
+static void host_edge(void)
+{
     static float px[N * 4], alone[N * 4];
     float view[16], proj[16], fg8[4];
     host_matrices(view, proj, 0.5, 5000.0);
@@ -156,12 +173,11 @@ static void test_no_halo_at_host_edge(void **st)
                 edge_kept += px[i * 4] == fg8[0] && px[i * 4 + 1] == fg8[1] && px[i * 4 + 2] == fg8[2];
             }
         }
-        printf("N = %d: quad pixels with cloud behind %d, kept exactly %d (edge column %d of %d); %d cloud pixels "
-               "right of it\n", n, behind, kept, edge_kept, edge_behind, right);
+        printf("N = %d, edge_refine %g: quad pixels with cloud behind %d, kept exactly %d (edge column %d of %d); %d "
+               "cloud pixels right of it\n", n, edge_refine, behind, kept, edge_kept, edge_behind, right);
         assert_true(behind > N / 40 && edge_behind > 3 && right > N / 40);
         assert_int_equal(kept, behind);
     }
-    use_downsample(1);
 }
 
 int main(void)

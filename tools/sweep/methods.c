@@ -40,6 +40,13 @@ static const struct {
      "low, 1/3 resolution, 2 segments, hull 6", 0},
     {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=2;quality.hull_tessellation=6",
      "low, 1/4 resolution, 2 segments, hull 6", 0},
+    /* half resolution with the pixels whose four texels differ marched again at full resolution (quality.edge_refine):
+     * the thin bright rim that half resolution smears */
+    {CU_PRESET_LOW, "quality.edge_refine=0.3", "low, edges refined 0.3", 0},
+    {CU_PRESET_LOW, "quality.segments=2;quality.hull_tessellation=6;quality.edge_refine=0.3",
+     "low, 2 segments, hull 6, edges refined 0.3", 0},
+    {CU_PRESET_LOW, "quality.segments=2;quality.hull_tessellation=6;quality.edge_refine=0.6",
+     "low, 2 segments, hull 6, edges refined 0.6", 0},
     /* the opacity map read bilinear (high's) instead of at its nearest texel */
     {CU_PRESET_MEDIUM, "light.sun_filter=bilinear", "medium, bilinear sun map", 0},
     /* the fitted octaves in place of the presets' diffusion: the presets before the sweep timed a turning sun
