@@ -220,8 +220,10 @@ static void clouds_ndc_rect(const cu_renderer *r, int visible, double u[4])
 }
 
 /* Each cloud in view, back to front, into the bound target (the frame's, the low-resolution one, the temporal grid's
- * or, with ctx->refining, the edge refinement's); dt: how far back the last frame is, for the clouds' motion. */
-static void draw_clouds(cu_renderer *r, int visible, double dt)
+ * or, with ctx->refining, the edge refinement's); dt: how far back the last frame is, for the clouds' motion. clip
+ * (refining only, else NULL): the pixels the refinement may touch; each cloud's full-screen pass is scissored to them
+ * and its own rectangle. */
+static void draw_clouds(cu_renderer *r, int visible, double dt, const int clip[4])
 {
     cu_gl *gl = &r->gl;
     cu_gpu_scene *ctx = &r->ctx;
@@ -237,7 +239,19 @@ static void draw_clouds(cu_renderer *r, int visible, double dt)
             cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
             continue;
         }
-        if (depth_used) /* each cloud's depth pre-pass and stencil of its own (refining: the marks stay, pass_refine.h) */
+        if (clip) {
+            int px[4];
+            cu_ndc_rect_pixels(ctx->camera.ndc_rect, ctx->width, ctx->height, 1, px);
+            int x0 = px[0] > clip[0] ? px[0] : clip[0], y0 = px[1] > clip[1] ? px[1] : clip[1];
+            int x1 = px[2] < clip[2] ? px[2] : clip[2], y1 = px[3] < clip[3] ? px[3] : clip[3];
+            if (x1 <= x0 || y1 <= y0)
+                continue;
+            gl->Scissor(x0, y0, x1 - x0, y1 - y0);
+            int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
+            cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
+            continue;
+        }
+        if (depth_used) /* each cloud's depth pre-pass and stencil of its own */
             gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
         depth_used = 1;
         int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
@@ -341,7 +355,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     }
     ctx->host_scale = n;
     double dt = g > 1 ? r->time - r->pass_temporal.prev_time : 0.0;
-    draw_clouds(r, visible, dt);
+    draw_clouds(r, visible, dt, NULL);
     /* The context keeps the nearest cloud's camera (what tests and a debugger see of "this frame"), or says that no
      * cloud was in view. */
     if (visible == 0)
@@ -366,7 +380,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
             cu_camera nearest = ctx->camera;
             ctx->host_scale = 1;
             ctx->refining = 1;
-            draw_clouds(r, visible, 0.0);
+            draw_clouds(r, visible, 0.0, reach);
             ctx->refining = 0;
             ctx->camera = nearest;
             cu_pass_refine_end(&r->pass_refine, gl);

@@ -16,8 +16,7 @@ struct cu_collector;
 /* The ground's shadow maps: clouds on up to this many winds move their shadows without remaking them. */
 #define CU_GROUND_MAPS 2
 /* Texture units the shaders agree on (cloud.frag, sunmap.glsl, ms_slab.glsl, density.glsl). */
-/* The stencil bit of the pixels quality.edge_refine leaves to the upsampled image (pass_refine.h); the cloud pass's
- * own counting keeps to the bits below it. */
+/* The stencil bit of the pixels quality.edge_refine leaves to the upsampled image (pass_refine.h). */
 #define CU_REFINE_SKIP 0x80u
 enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TAU = 3, CU_UNIT_SLAB = 4,
        CU_UNIT_HOST_DEPTH = 10 /* after the slab pass's six */, CU_UNIT_SHADOW = 11 /* other clouds' shadow; the

@@ -73,9 +73,12 @@ void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx)
     }
     gl->Enable(GL_BLEND);
     gl->BlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA); /* premultiplied over the sky */
-    if (cu_pass_cloud_fullscreen(ctx)) {
+    /* While refining (quality.edge_refine), the full-screen triangle too: one fragment a pixel for the stencil test
+     * to reject, where the hull would bring a depth pre-pass and every layer of every ellipsoid to reject. */
+    if (ctx->refining || cu_pass_cloud_fullscreen(ctx)) {
         gl->Disable(GL_DEPTH_TEST);
-        if (ctx->refining) { /* only the pixels quality.edge_refine marked; no write, so tested before the shader */
+        if (ctx->refining) { /* only the pixels quality.edge_refine marked; never written (pass_refine.c), so the test
+                              * runs before the shader although it can discard */
             gl->Enable(GL_STENCIL_TEST);
             gl->StencilFunc(GL_EQUAL, 0, CU_REFINE_SKIP);
             gl->StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
@@ -99,8 +102,7 @@ void cu_pass_cloud_draw(const cu_pass_cloud *p, const cu_gpu_scene *ctx)
     gl->DrawElementsInstanced(GL_TRIANGLES, ctx->hull_indices, GL_UNSIGNED_SHORT, 0, ctx->cloud->n);
     /* Cloud pass: only the fragment that won the depth test is shaded. Where two hulls' depths are equal to the
      * depth buffer's precision, both would pass GL_EQUAL and blend the whole ray twice; the stencil lets the first
-     * of them through and no other (the shader integrates the whole ray, so any one will do). While refining, the
-     * pixels left to the upsampled image hold CU_REFINE_SKIP and fail the same test; the write mask keeps it. */
+     * of them through and no other (the shader integrates the whole ray, so any one will do). */
     gl->ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     gl->Enable(GL_BLEND);
     gl->DepthFunc(GL_EQUAL);

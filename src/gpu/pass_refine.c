@@ -65,12 +65,11 @@ int cu_pass_refine_begin(cu_pass_refine *p, const cu_gpu_scene *ctx, GLuint low,
     gl->ActiveTexture(GL_TEXTURE0);
     gl->BindVertexArray(ctx->empty_vao);
     gl->DrawArrays(GL_TRIANGLES, 0, 3);
-    /* what the cloud pass expects: its own stencil function and ops per draw, the marks' bit never written; the
-     * scissor stays (nothing outside rect is read), and between clouds keeps the frame's clears to it too */
+    /* what the cloud pass expects: its stencil test per draw (pass_cloud.c), never a write: the test stays early */
     gl->Enable(GL_STENCIL_TEST);
-    gl->StencilFunc(GL_EQUAL, 0, 0xff);
+    gl->StencilFunc(GL_EQUAL, 0, CU_REFINE_SKIP);
     gl->StencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    gl->StencilMaskSeparate(GL_FRONT_AND_BACK, CU_REFINE_SKIP - 1u);
+    gl->StencilMaskSeparate(GL_FRONT_AND_BACK, 0);
     return 0;
 }
 

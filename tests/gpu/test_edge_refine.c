@@ -84,8 +84,10 @@ static const char *const TINY[] = {"quality.edge_refine=0.000001", NULL};
 static const char *const NONE[] = {"quality.edge_refine=1", NULL};
 
 /* Near 0 every pixel a cloud reaches is marked: low with it is medium, through the linear composite to fp32
- * rounding (measured: identical) and through the one-pass composite to 1/255 (its RGBA16F image, as test_composite's
- * bound); low alone differs on hundreds of pixels, so the comparison can fail. */
+ * rounding and through the one-pass composite to 1/255 (its RGBA16F image, as test_composite's bound); low alone
+ * differs on hundreds of pixels, so the comparison can fail. The refinement draws each cloud as one full-screen
+ * triangle, whose rays come from the unprojected pixel rather than the hull's interpolated point: fp32 rounding of
+ * the direction, 1.1e-4 of a pixel's value at most (measured), bound 1e-3. */
 static void test_tiny_threshold_is_full_resolution(void **st)
 {
     (void)st;
@@ -103,7 +105,7 @@ static void test_tiny_threshold_is_full_resolution(void **st)
                low.off, low.worst, tiny.off, tiny.worst);
         assert_true(low.off > 100);
         assert_int_equal(tiny.off, 0);
-        assert_true(tiny.worst < 1e-5);
+        assert_true(tiny.worst < 1e-3);
         render(scenes[s], "quality.preset=medium", NULL, 0, NULL, full8);
         render(scenes[s], "quality.preset=low", NULL, 0, NULL, got8);
         tr_diff low8 = tr_compare_rgba8(got8, full8, W, H, 1);

@@ -16,13 +16,14 @@ T=${TMPDIR:-/tmp}/cumulo-er-bench.$$
 mkdir -p "$T"
 trap 'rm -rf "$T"' EXIT
 VIEWS="sweep_cumulus_hg sweep_silver_lining_hg sweep_below_hg sweep_low_sun_hg"
-CONFIGS="medium medium2 low low2 r6 r3 r3s2"
+CONFIGS="medium medium2 low low2 r10 r6 r3 r3s2"
 sets() {
   case $1 in
     medium) echo "--set quality.preset=medium" ;;
     medium2) echo "--set quality.preset=medium --set quality.segments=2 --set quality.hull_tessellation=6" ;;
     low) echo "--set quality.preset=low" ;;
     low2) echo "--set quality.preset=low --set quality.segments=2 --set quality.hull_tessellation=6" ;;
+    r10) echo "--set quality.preset=low --set quality.edge_refine=1" ;;
     r6) echo "--set quality.preset=low --set quality.edge_refine=0.6" ;;
     r3) echo "--set quality.preset=low --set quality.edge_refine=0.3" ;;
     r3s2) echo "--set quality.preset=low --set quality.segments=2 --set quality.hull_tessellation=6 \
@@ -35,6 +36,7 @@ label() {
     medium2) echo "medium, 2 segments, hull 6" ;;
     low) echo "low" ;;
     low2) echo "low, 2 segments, hull 6" ;;
+    r10) echo "low, edge_refine 1 (its passes, nothing marked)" ;;
     r6) echo "low, edge_refine 0.6" ;;
     r3) echo "low, edge_refine 0.3" ;;
     r3s2) echo "low, 2 segments, hull 6, edge_refine 0.3" ;;
