@@ -40,6 +40,13 @@ static const struct {
      "low, 1/3 resolution, 2 segments, hull 6", 0},
     {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=2;quality.hull_tessellation=6",
      "low, 1/4 resolution, 2 segments, hull 6", 0},
+    /* the cheapest end: at 1/4 resolution a frame is mostly what every method pays (the sky, the composite) */
+    {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=1;quality.hull_tessellation=4",
+     "low, 1/4 resolution, 1 segment, hull 4", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;quality.cloud_downsample=4;quality.segments=2;quality.hull_tessellation=6",
+     "low, octaves, 1/4 resolution, 2 segments, hull 6", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;quality.cloud_downsample=4;quality.segments=1;quality.hull_tessellation=4",
+     "low, octaves, 1/4 resolution, 1 segment, hull 4", 0},
     /* half resolution with the pixels whose four texels differ marched again at full resolution (quality.edge_refine):
      * the thin bright rim that half resolution smears */
     {CU_PRESET_LOW, "quality.edge_refine=0.3", "low, edges refined 0.3", 0},
@@ -79,13 +86,14 @@ static const struct {
 /* The uniform march: steps along the view x steps toward the sun, with the baked noise (the default; what a
  * real-time march reads) and, for the outside comparison's two settings, the exact noise; its cheapest settings also
  * at half resolution (quality.cloud_downsample = 2, as `low` draws Kol's: Nubis and Frostbite march at reduced
- * resolution too). */
+ * resolution too), and the cheapest at a quarter. */
 static const struct {
     int n, m, baked, down;
 } UNI[] = {
     {8, 2, 1, 1},  {8, 4, 1, 1},  {16, 2, 1, 1},  {16, 4, 1, 1}, {16, 8, 1, 1}, {32, 2, 1, 1},
     {32, 4, 1, 1}, {32, 8, 1, 1}, {64, 4, 1, 1},  {64, 6, 1, 1}, {64, 8, 1, 1}, {128, 4, 1, 1},
     {128, 8, 1, 1}, {16, 4, 0, 1}, {64, 6, 0, 1}, {8, 2, 1, 2},  {8, 4, 1, 2},  {16, 4, 1, 2},
+    {8, 2, 1, 4}, /* the cheapest end, beside Kol's at 1/4 resolution */
 };
 #define N_UNI ((int)(sizeof UNI / sizeof UNI[0]))
 #define N_CFG (N_KOL + N_UNI)
@@ -111,7 +119,8 @@ static void make_points(mpoint *pt)
         pt[n].family = FAM_UNIFORM;
         pt[n].control = !UNI[i].baked; /* the exact noise: the outside comparison's, beside the curve */
         snprintf(pt[n].label, sizeof pt[n].label, "uniform %d / %d%s%s", UNI[i].n, UNI[i].m,
-                 UNI[i].baked ? "" : ", exact noise", UNI[i].down == 2 ? ", 1/2 resolution" : "");
+                 UNI[i].baked ? "" : ", exact noise",
+                 UNI[i].down == 2 ? ", 1/2 resolution" : UNI[i].down == 4 ? ", 1/4 resolution" : "");
         config_high(&pt[n].c);
         snprintf(pt[n].c.extra, SW_EXTRA_LEN,
                  "ms.mode=octaves;quality.method=uniform;quality.uniform_steps=%d;quality.uniform_sun_steps=%d;"
