@@ -239,23 +239,23 @@ static void draw_clouds(cu_renderer *r, int visible, double dt, const int clip[4
             cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
             continue;
         }
-        if (clip) {
+        int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
+        const cu_pass_cloud *pass = far ? &r->pass_cloud_far : &r->pass_cloud;
+        if (clip) { /* one full-screen triangle (pass_cloud.c), over this cloud's pixels alone */
             int px[4];
             cu_ndc_rect_pixels(ctx->camera.ndc_rect, ctx->width, ctx->height, 1, px);
             int x0 = px[0] > clip[0] ? px[0] : clip[0], y0 = px[1] > clip[1] ? px[1] : clip[1];
             int x1 = px[2] < clip[2] ? px[2] : clip[2], y1 = px[3] < clip[3] ? px[3] : clip[3];
-            if (x1 <= x0 || y1 <= y0)
-                continue;
-            gl->Scissor(x0, y0, x1 - x0, y1 - y0);
-            int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
-            cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
+            if (x1 > x0 && y1 > y0) {
+                gl->Scissor(x0, y0, x1 - x0, y1 - y0);
+                cu_pass_cloud_draw(pass, ctx);
+            }
             continue;
         }
         if (depth_used) /* each cloud's depth pre-pass and stencil of its own */
             gl->Clear(GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
         depth_used = 1;
-        int far = r->pass_cloud_far.prog_hull && sl->pixels < r->scene.lod_pixels;
-        cu_pass_cloud_draw(far ? &r->pass_cloud_far : &r->pass_cloud, ctx);
+        cu_pass_cloud_draw(pass, ctx);
     }
 }
 
@@ -360,6 +360,7 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
      * cloud was in view. */
     if (visible == 0)
         ctx->camera.visible = 0;
+    cu_profile_mark(r, CU_PASS_CLOUDS);
     temporal_frame_identity(ctx);
     GLuint image = 0, refined = 0;
     /* the pixels the cloud image can reach: its rectangle, the temporal grid's blocks and both bilinear reads; without
@@ -370,6 +371,10 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
     if (g > 1) {
         cu_pass_temporal_end(&r->pass_temporal, ctx, &view_cam, r->time, cloud_rect);
         image = cu_pass_temporal_image(&r->pass_temporal);
+        if (r->scene.edge_refine > 0 && !r->refine_off_said)
+            cu_gpu_log(ctx, CU_LOG_INFO, "quality.edge_refine: off while the temporal grid draws the clouds (its "
+                       "image is reprojected from frames before, not refined)");
+        r->refine_off_said |= r->scene.edge_refine > 0;
     } else if (n > 1) {
         image = r->pass_upsample.low.tex[0];
         /* quality.edge_refine: the pixels whose low-resolution neighbours differ, marched again at full resolution */
@@ -385,9 +390,9 @@ static int render_frame(cu_renderer *r, const cu_frame *f, cu_error *err)
             ctx->camera = nearest;
             cu_pass_refine_end(&r->pass_refine, gl);
             refined = r->pass_refine.full.tex[0];
+            cu_profile_mark(r, CU_PASS_CLOUDS); /* the clouds' pass, the second time */
         }
     }
-    cu_profile_mark(r, CU_PASS_CLOUDS);
     ctx->ke_scale = 1;
     if (over) { /* visible > 0 here: n and g are 1 without a cloud in view */
         cu_camera nearest = ctx->camera;

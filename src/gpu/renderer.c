@@ -111,6 +111,7 @@ static void delete_scene_objects(cu_renderer *r)
     cu_pass_impostor_destroy(&r->pass_impostor, gl);
     r->impostors_made = 0;
     r->temporal_off_said = 0;
+    r->refine_off_said = 0;
     cu_pass_slab_destroy(&r->pass_slab, gl);
     cu_pass_shadow_destroy(&r->pass_shadow, gl);
     for (int g = 0; g < CU_GROUND_MAPS; g++) {

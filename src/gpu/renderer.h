@@ -72,6 +72,7 @@ struct cu_renderer {
     cu_pass_refine pass_refine;     /* quality.edge_refine with cloud_downsample > 1: its pixels again at full size */
     cu_pass_temporal pass_temporal; /* quality.temporal_grid > 1 (prog 0 otherwise) */
     int temporal_off_said;          /* the log line saying why the grid is not used this scene */
+    int refine_off_said;            /* the log line saying edge_refine is off under the temporal grid */
     cu_pass_impostor pass_impostor; /* quality.impostor_pixels > 0 (prog 0 otherwise) */
     long impostors_made;  /* impostor images made since the scene was set (tests read it) */
     unsigned long frame_no; /* frames rendered by this renderer (impostors drawn in the frame before are current) */
