@@ -170,7 +170,7 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     NUM("quality", "edge_refine", 1, "0", 0, 1, 0, "", "with cloud_downsample > 1 (and temporal_grid 1): the pixels "
         "whose four nearest low-resolution cloud texels differ by more than this, in coverage or in luminance "
         "contrast (max - min) / (max + min), are marched again at full resolution (a cloud's rim, a thin bright "
-        "edge); 0: off", S(edge_refine)),
+        "edge; needs half-float targets); 0: off", S(edge_refine)),
     /* 1..4: a 4 x 4 grid already waits 16 frames for each pixel's own ray */
     INT("quality", "temporal_grid", 1, "1", 1, 4, 0, "", "each frame marches one cloud pixel of every G x G block "
         "(a Bayer order) and reprojects the others from the frame before (camera motion and wind); each pixel is "

@@ -207,10 +207,14 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
         cu_pass_tonemap_create(&r->pass_tonemap, ctx, d.fs, d.linear, err) ||
         (r->shadows && cu_pass_shadow_create(&r->pass_shadow, ctx, d.fs, err)) ||
         ((most_d > 1 || most_g > 1) && cu_pass_upsample_create(&r->pass_upsample, ctx, err)) ||
-        (most_d > 1 && r->scene.edge_refine > 0 && cu_pass_refine_create(&r->pass_refine, ctx, err)) ||
+        (most_d > 1 && r->scene.edge_refine > 0 && ctx->half_rt && cu_pass_refine_create(&r->pass_refine, ctx, err)) ||
         (most_g > 1 && cu_pass_temporal_create(&r->pass_temporal, ctx, err)) ||
         (r->scene.impostor_pixels > 0 && r->clouds.n > 0 && cu_pass_impostor_create(&r->pass_impostor, ctx, d.hull, err)))
         return 1;
+    /* quality.edge_refine marks the pixels it leaves alone with an alpha of 2, which an RGBA8 target cannot hold */
+    if (most_d > 1 && r->scene.edge_refine > 0 && !ctx->half_rt)
+        cu_gpu_log(ctx, CU_LOG_WARN, "no half-float render targets: quality.edge_refine off (the upsampled clouds "
+                                     "alone)");
     if (r->clouds.n > 1 && r->scene.lod_pixels > 0) {
         shader_defs far;
         if (build_defines(r, &far, 1, err) || cu_pass_cloud_create(&r->pass_cloud_far, ctx, far.hull, far.fs, err))

@@ -1,8 +1,8 @@
 /* tests/gpu/test_fallback.c: the GLES 3.0 floor. A context without float or half-float colour targets (Mesa told to
  * hide EXT_color_buffer_float and _half_float, as a GLES 3.0 driver without them) must fall back with a warning:
  * light.shadow peel -> front (no opacity map), ms.mode slab -> octaves (no slab maps), an RGBA8 HDR target whose
- * highlights clip, and still draw the same picture where nothing clips. Each render runs in a child process: Mesa
- * reads MESA_EXTENSION_OVERRIDE when it creates the context. */
+ * highlights clip, quality.edge_refine off, and still draw the same picture where nothing clips. Each render runs in
+ * a child process: Mesa reads MESA_EXTENSION_OVERRIDE when it creates the context. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -100,6 +100,25 @@ static void test_no_float_targets(void **st)
     assert_true(d.max_diff <= 24);
 }
 
+/* quality.edge_refine's target marks the pixels it leaves alone with an alpha of 2, which RGBA8 clamps to 1 (they
+ * would turn black): without half-float targets it is off, and the frame is low's without it, pixel for pixel. */
+static void test_no_float_targets_edge_refine(void **st)
+{
+    (void)st;
+    static result got, ref;
+    const char *hide = "-GL_EXT_color_buffer_float -GL_EXT_color_buffer_half_float";
+    const char *refine[] = {"quality.preset=low", "quality.edge_refine=0.3", NULL};
+    const char *plain[] = {"quality.preset=low", NULL};
+    render_child(hide, "scenes/sweep_silver_lining_hg.scene", refine, &got);
+    render_child(hide, "scenes/sweep_silver_lining_hg.scene", plain, &ref);
+    assert_int_equal(got.rgba8, 1);
+    tr_diff d = tr_compare_rgba8(got.px, ref.px, W, H, 0);
+    printf("no float targets, edge_refine 0.3: max %d/255 from low without it\n", d.max_diff);
+    if (d.max_diff > 0)
+        tr_save_failure("fallback-edge-refine", got.px, ref.px, W, H);
+    assert_int_equal(d.max_diff, 0);
+}
+
 /* Half-float but no float targets: the opacity map falls back to the front depth; the slab model stays (its maps
  * are RGBA16F). Against a full context with light.shadow=front: the same picture. */
 static void test_half_float_only(void **st)
@@ -155,6 +174,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_no_float_targets),
+        cmocka_unit_test(test_no_float_targets_edge_refine),
         cmocka_unit_test(test_half_float_only),
         cmocka_unit_test(test_target_over_limit),
     };
