@@ -236,6 +236,8 @@ static void draw_clouds(cu_renderer *r, int visible, double dt, const int clip[4
         ctx->motion[0] = (float)(sl->wind.x * dt);
         ctx->motion[1] = (float)(sl->wind.z * dt);
         if (sl->imp.in_use) { /* small on screen: its image (quality.impostor_pixels) */
+            if (clip) /* not the rectangle of the cloud drawn before */
+                gl->Scissor(clip[0], clip[1], clip[2] - clip[0], clip[3] - clip[1]);
             cu_pass_impostor_draw(&r->pass_impostor, ctx, &sl->imp);
             continue;
         }
