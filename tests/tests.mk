@@ -52,6 +52,8 @@ $(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_
 CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
 # Where on screen a cloud can be (camera.c), against points of its bounds from random views: no GL.
 $(eval $(call test_program,test_camera_rect,tests/gpu/test_camera_rect.c $(LIB),,$(LIB_LIBS)))
+# Where the sky's grid may use larger cells (sky_grid.c), against the interpolation at every pixel: no GL.
+$(eval $(call test_program,test_sky_plan,tests/gpu/test_sky_plan.c $(LIB),,$(LIB_LIBS)))
 # How a ray is marched: the uniform method, Kol's boundary knots against the path tracer's transmittance, baked noise.
 $(eval $(call test_program,test_march,tests/gpu/test_march.c $(HEADLESS) $(PT_OBJS) $(LIB),,$(HEADLESS_LIBS)))
 # Issue 7's extremes matrix (it reads the temporal history and impostor images back with GLES itself).

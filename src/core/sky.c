@@ -62,6 +62,24 @@ void cu_sky_tables(const cu_sky *sky, float zenith_part[4 * CU_SKY_TABLE], float
     }
 }
 
+/* Entry t in 0..1 of a table, interpolated (sky.glsl's table()). */
+static void table_at(const float *part, double t, double out[3])
+{
+    double f = t * (CU_SKY_TABLE - 1);
+    int i = (int)f < CU_SKY_TABLE - 2 ? (int)f : CU_SKY_TABLE - 2;
+    for (int k = 0; k < 3; k++)
+        out[k] = part[4 * i + k] + (part[4 * (i + 1) + k] - part[4 * i + k]) * (f - i);
+}
+
+void cu_sky_from_tables(const float zenith_part[4 * CU_SKY_TABLE], const float sun_part[4 * CU_SKY_TABLE],
+                        vec3 sun_dir, vec3 dir, double out[3])
+{
+    double s = 0.5 - 0.5 * v3_dot(dir, sun_dir), z[3], g[3];
+    table_at(zenith_part, sqrt(dir.y > 0 ? dir.y : 0), z);
+    table_at(sun_part, sqrt(s < 0 ? 0 : s > 1 ? 1 : s), g);
+    xyY_to_rgb(z[1] * g[1], z[2] * g[2], z[0] * g[0], out);
+}
+
 void cu_sky_compute(cu_sky *sky, const cu_scene *s)
 {
     double T = s->turbidity;

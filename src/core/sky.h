@@ -31,6 +31,10 @@ void cu_sky_radiance(const cu_sky *sky, const cu_scene *s, vec3 dir, double out[
  * the sun). */
 #define CU_SKY_TABLE 256
 void cu_sky_tables(const cu_sky *sky, float zenith_part[4 * CU_SKY_TABLE], float sun_part[4 * CU_SKY_TABLE]);
+/* The sky toward dir (unit) as sky.glsl's perez_sky reads it from those tables (entries interpolated linearly, the
+ * horizon's row below it): what the GPU draws, for the CPU's estimate of the sky grid's error (pass_sky.c). */
+void cu_sky_from_tables(const float zenith_part[4 * CU_SKY_TABLE], const float sun_part[4 * CU_SKY_TABLE],
+                        vec3 sun_dir, vec3 dir, double out[3]);
 /* White balance for display, like a camera set to daylight: the RGB colour of the sun's irradiance for a sun 60
  * degrees high (turbidity 2.5), scaled to unit luminance (clouds are lit mostly by the sun). A midday cloud is white; a low sun
  * still looks warm. With a scene that gives its own sun irradiance or a constant sky, no balance is applied. */

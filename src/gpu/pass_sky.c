@@ -65,10 +65,9 @@ static void tables_update(cu_pass_sky *p, const cu_gl *gl, const cu_sky *sky)
     memcpy(of + 18, sky->norm, sizeof sky->norm);
     if (p->tables_built && !memcmp(of, p->tables_of, sizeof of))
         return;
-    float t[2 * 4 * CU_SKY_TABLE];
-    cu_sky_tables(sky, t, t + 4 * CU_SKY_TABLE);
+    cu_sky_tables(sky, p->table, p->table + 4 * CU_SKY_TABLE);
     gl->BindTexture(GL_TEXTURE_2D, p->tables);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, CU_SKY_TABLE, 2, 0, GL_RGBA, GL_FLOAT, t);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, CU_SKY_TABLE, 2, 0, GL_RGBA, GL_FLOAT, p->table);
     memcpy(p->tables_of, of, sizeof of);
     p->tables_built = 1;
 }
@@ -114,40 +113,6 @@ static void uniforms(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint prog, co
         tables_update(pass, gl, sky);
 }
 
-/* The view direction at the viewport's NDC (x, y), unit, through the sky's matrix as sky.vert and sky.frag make it
- * (column-major, clip -> direction). Its height is affine in the screen up to a positive factor (sign(d.y) is that
- * of the far point's y), so over a rectangle its sign is settled at the corners. */
-static vec3 dir_at(const float *m, double x, double y)
-{
-    double n[4], f[4];
-    for (int r = 0; r < 4; r++) {
-        n[r] = m[r] * x + m[4 + r] * y - m[8 + r] + m[12 + r];
-        f[r] = m[r] * x + m[4 + r] * y + m[8 + r] + m[12 + r];
-    }
-    return v3_norm(v3(f[0] / f[3] - n[0] / n[3], f[1] / f[3] - n[1] / n[3], f[2] / f[3] - n[2] / n[3]));
-}
-
-#define SKY_LOW 3       /* rows of sky alone, low: within LOW_SKY of the horizon (draw's run of rows) */
-#define LOW_SKY 0.0872  /* the sine of 5 degrees: below, the Perez sky's colour bends toward the horizon's within a
-                         * few degrees (its zenith terms e^(B / cos theta)); the grid's rows there are a quarter as
-                         * high (piece: within a level of the display where square cells would be 3-5 off) */
-
-/* What the rows between NDC y0 and y1 hold: sky alone (SKY_LOW near the horizon), ground alone, or both. A margin
- * far above fp32's rounding of the direction in the shader keeps the rows near the horizon with the branch; NaN (a
- * degenerate camera) too. */
-static int rows_part(const float *m, double y0, double y1)
-{
-    const double margin = 1e-4;
-    double h[4] = {dir_at(m, -1, y0).y, dir_at(m, 1, y0).y, dir_at(m, -1, y1).y, dir_at(m, 1, y1).y};
-    int above = 1, below = 1, low = 0;
-    for (int k = 0; k < 4; k++) {
-        above = above && h[k] > margin;
-        below = below && h[k] < -margin;
-        low = low || h[k] < LOW_SKY;
-    }
-    return above ? (low ? SKY_LOW : CU_SKY_ABOVE) : below ? CU_SKY_BELOW : CU_SKY_BOTH;
-}
-
 #define SUN_RADIUS 0.004654 /* rad: acos(0.99998917), sky.frag's test for the disk */
 #define SUN_CELL 32         /* pixels a side of the cells sun_box tests */
 #define SUN_ROW 514         /* corners in a row of them: up to 16384 pixels wide (output.size's largest) */
@@ -177,7 +142,7 @@ static void sun_box(const float *m, vec3 sun, int w, int h, int grid, int box[4]
         for (int i = 0; i <= nx; i++) {
             int px[2] = {(i - 1) * SUN_CELL, i * SUN_CELL < w ? i * SUN_CELL : w};
             int py[2] = {(j - 1) * SUN_CELL, j * SUN_CELL < h ? j * SUN_CELL : h};
-            row[j & 1][i] = dir_at(m, 2.0 * px[1] / w - 1.0, 2.0 * py[1] / h - 1.0);
+            row[j & 1][i] = cu_sky_dir(m, 2.0 * px[1] / w - 1.0, 2.0 * py[1] / h - 1.0);
             if (i == 0 || j == 0)
                 continue;
             vec3 c[4] = {row[j & 1][i - 1], row[j & 1][i], row[~j & 1][i - 1], row[~j & 1][i]}, mean = v3(0, 0, 0);
@@ -210,7 +175,7 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
     const cu_gl *gl = ctx->gl;
     if (box[2] <= box[0] || box[3] <= box[1])
         return 0;
-    int low = part == SKY_LOW, constant = ctx->scene->sky_model == CU_SKY_CONSTANT;
+    int low = part == CU_SKY_LOW, constant = ctx->scene->sky_model == CU_SKY_CONSTANT;
     part = low ? CU_SKY_ABOVE : part;
     /* the grid only for the Perez sky: a constant colour costs less drawn flat than through the grid's triangles on
      * llvmpipe; flat, not with a cloud image over it (that blends and tone-maps a pixel at a time anyway) */
@@ -218,6 +183,12 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
     int shape = !sun ? CU_SKY_PIXEL
               : k != CU_SKY_OVER && (constant || (part == CU_SKY_BELOW && maps == 0)) ? CU_SKY_FLAT
               : cell > 0 && part == CU_SKY_ABOVE && !constant ? CU_SKY_GRID : CU_SKY_PIXEL;
+    if (shape == CU_SKY_GRID) { /* the cells of the box's band (draw's runs keep to one) */
+        int band = box[1] / CU_SKY_BAND, scale = band < CU_SKY_BANDS ? pass->scale[band][low] : 1;
+        scale = scale > 0 ? scale : 1; /* no plan made (draw makes one first) */
+        cell *= scale;
+        high *= scale;
+    }
     if (program(pass, gl, k, part, maps, shape, err))
         return 1;
     const cu_sky_locs *l = &pass->loc[k][part][maps][shape];
@@ -293,6 +264,34 @@ static void shadow_box(const cu_gpu_scene *ctx, int maps, int w, int h, int box[
     cu_ndc_rect_pixels(ndc, w, h, 1, box);
 }
 
+/* The grid's cells for this frame (cu_sky_grid_plan), made again only when what they depend on changed: the sky's
+ * matrix, the sun, the sky's coefficients, the viewport and quality.sky_grid (the sun's box follows from those). */
+static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const int sun[4])
+{
+    double of[43];
+    for (int i = 0; i < 16; i++)
+        of[i] = ctx->camera.inv_rot[i];
+    of[16] = ctx->sun_dir.x;
+    of[17] = ctx->sun_dir.y;
+    of[18] = ctx->sun_dir.z;
+    memcpy(of + 19, ctx->sky->perez, sizeof ctx->sky->perez);
+    of[34] = ctx->sky->zenith[0];
+    of[35] = ctx->sky->zenith[1];
+    of[36] = ctx->sky->zenith[2];
+    of[37] = ctx->sky->norm[0];
+    of[38] = ctx->sky->norm[1];
+    of[39] = ctx->sky->norm[2];
+    of[40] = w;
+    of[41] = h;
+    of[42] = ctx->scene->sky_grid;
+    if (pass->plan_made && !memcmp(of, pass->plan_of, sizeof of))
+        return;
+    tables_update(pass, ctx->gl, ctx->sky);
+    cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, pass->scale);
+    memcpy(pass->plan_of, of, sizeof of);
+    pass->plan_made = 1;
+}
+
 static int in_rows(const int box[4], int row)
 {
     return row >= box[1] && row < box[3];
@@ -319,19 +318,23 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     int maps = ctx->ground_maps >= 0 && ctx->ground_maps <= CU_GROUND_MAPS ? ctx->ground_maps : CU_GROUND_MAPS;
     int x0 = rect[0] < 0 ? 0 : rect[0] > w ? w : rect[0], x1 = rect[2] < x0 ? x0 : rect[2] > w ? w : rect[2];
     const float *m = ctx->camera.inv_rot;
-    int rc = 0, part = split ? rows_part(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH, sun[4] = {0, 0, 0, 0};
+    int rc = 0, part = split ? cu_sky_rows(m, -1.0, -1.0 + 2.0 / h) : CU_SKY_BOTH, sun[4] = {0, 0, 0, 0};
     int shade[4] = {0, 0, 0, 0}, over = kind == CU_SKY_OVER;
     if (ctx->scene->sky_grid > 0 || !split) /* the grid's cells or a flat constant sky need the sun drawn over */
         sun_box(m, ctx->sun_dir, w, h, ctx->scene->sky_grid, sun);
     if (maps > 0)
         shadow_box(ctx, maps, w, h, shade);
+    int banded = ctx->scene->sky_grid > 0 && split;
+    if (banded)
+        plan(pass, ctx, w, h, sun);
     gl->Enable(GL_SCISSOR_TEST);
     for (int row = 0; row < h && !rc;) {
         /* a run: rows holding the same part, all on the same side of the cloud image's rows and the shadows' */
         int in = in_rows(rect, row), dark = in_rows(shade, row), end = row + 1, next = part;
         while (end < h) {
-            next = split ? rows_part(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) : CU_SKY_BOTH;
-            if (next != part || in_rows(rect, end) != in || in_rows(shade, end) != dark)
+            next = split ? cu_sky_rows(m, -1.0 + 2.0 * end / h, -1.0 + 2.0 * (end + 1) / h) : CU_SKY_BOTH;
+            if (next != part || in_rows(rect, end) != in || in_rows(shade, end) != dark ||
+                (banded && end % CU_SKY_BAND == 0 && (part == CU_SKY_ABOVE || part == CU_SKY_LOW)))
                 break;
             end++;
         }
@@ -339,7 +342,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
         int cut[6] = {0, w, w, w, w, w}, n = 2;
         if (over && in)
             cut[n++] = x0, cut[n++] = x1;
-        if (dark && part != CU_SKY_ABOVE && part != SKY_LOW)
+        if (dark && part != CU_SKY_ABOVE && part != CU_SKY_LOW)
             cut[n++] = shade[0], cut[n++] = shade[2];
         for (int i = 1; i < n; i++) /* insertion sort of at most six */
             for (int j = i; j > 0 && cut[j - 1] > cut[j]; j--) {
@@ -350,7 +353,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
         for (int i = 0; i + 1 < n && !rc; i++) {
             const int box[4] = {cut[i], row, cut[i + 1], end};
             int image = over && in && box[0] >= x0 && box[2] <= x1;
-            int shaded = dark && box[0] >= shade[0] && box[2] <= shade[2] && part != CU_SKY_ABOVE && part != SKY_LOW;
+            int shaded = dark && box[0] >= shade[0] && box[2] <= shade[2] && part != CU_SKY_ABOVE && part != CU_SKY_LOW;
             rc = piece(pass, ctx, over ? (image ? CU_SKY_OVER : CU_SKY_OUT) : kind, part, shaded ? maps : 0, factor,
                        box, sun, err);
         }

@@ -4,6 +4,7 @@
 #ifndef CU_PASS_SKY_H
 #define CU_PASS_SKY_H
 #include "gpu_scene.h"
+#include "sky_grid.h"
 
 typedef struct cu_sky_locs {
     cu_sun_locs sun;
@@ -16,9 +17,7 @@ typedef struct cu_sky_locs {
  * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two);
  * the same with a cloud image composited on the way. */
 enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
-/* And by the rows they draw (sky.frag's SKY_PART): rows holding the horizon, rows of sky alone, rows of ground alone.
- * A software rasteriser runs both sides of a shader's branch on every pixel; a program without the branch does not. */
-enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
+/* And by the rows they draw (sky_grid.h: CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW). */
 /* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS); and by
  * where the colour is worked out (sky.vert's SKY_VERTEX): at every pixel; at the corners of quality.sky_grid's cells
  * (rows of the Perez sky alone; the sun's disk then drawn over a pixel at a time); once, for a colour the same at every
@@ -32,6 +31,10 @@ typedef struct cu_pass_sky {
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
     int tables_built;
+    float table[2 * 4 * CU_SKY_TABLE]; /* the same tables on the CPU (grid_plan's estimate) */
+    unsigned char scale[CU_SKY_BANDS][2]; /* the grid's cells by band of rows (cu_sky_grid_plan) */
+    double plan_of[43];         /* what scale was made for: the sky's matrix, the sun, the tables, size and grid */
+    int plan_made;
     int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */
 } cu_pass_sky;
 

@@ -1,0 +1,134 @@
+/* src/gpu/sky_grid.c: the sky pass's geometry on the CPU (see sky_grid.h). */
+#include "sky_grid.h"
+
+vec3 cu_sky_dir(const float *m, double x, double y)
+{
+    double n[4], f[4];
+    for (int r = 0; r < 4; r++) {
+        n[r] = m[r] * x + m[4 + r] * y - m[8 + r] + m[12 + r];
+        f[r] = m[r] * x + m[4 + r] * y + m[8 + r] + m[12 + r];
+    }
+    return v3_norm(v3(f[0] / f[3] - n[0] / n[3], f[1] / f[3] - n[1] / n[3], f[2] / f[3] - n[2] / n[3]));
+}
+
+/* A direction's height is affine in the screen up to a positive factor (sign(d.y) is that of the far point's y), so
+ * over a rectangle its sign is settled at the corners. A margin far above fp32's rounding of the direction in the
+ * shader keeps the rows near the horizon with the branch; NaN (a degenerate camera) too. */
+int cu_sky_rows(const float *m, double y0, double y1)
+{
+    const double margin = 1e-4;
+    double h[4] = {cu_sky_dir(m, -1, y0).y, cu_sky_dir(m, 1, y0).y, cu_sky_dir(m, -1, y1).y, cu_sky_dir(m, 1, y1).y};
+    int above = 1, below = 1, low = 0;
+    for (int k = 0; k < 4; k++) {
+        above = above && h[k] > margin;
+        below = below && h[k] < -margin;
+        low = low || h[k] < CU_SKY_LOW_SINE;
+    }
+    return above ? (low ? CU_SKY_LOW : CU_SKY_ABOVE) : below ? CU_SKY_BELOW : CU_SKY_BOTH;
+}
+
+typedef struct plan_in {
+    const float *tables;
+    vec3 sun_dir;
+    const float *m;
+    int w, h;
+    const int *sun;
+} plan_in;
+
+/* The sky the tables give at pixel (x, y) of the viewport, as a corner of sky.vert's grid sees it. */
+static void sky_px(const plan_in *in, double x, double y, double out[3])
+{
+    vec3 d = cu_sky_dir(in->m, 2.0 * x / in->w - 1.0, 2.0 * y / in->h - 1.0);
+    cu_sky_from_tables(in->tables, in->tables + 4 * CU_SKY_TABLE, in->sun_dir, d, out);
+}
+
+/* Whether the interpolation at point (x, y) of rows [y0, y1) stays within CU_SKY_GRID_REL of the sky there. */
+static int close_at(const plan_in *in, double x, double y, int y0, int y1, const double v[3])
+{
+    if (y < y0 || y >= y1 || (x >= in->sun[0] && x < in->sun[2] && y >= in->sun[1] && y < in->sun[3]))
+        return 1;
+    double s[3];
+    sky_px(in, x, y, s);
+    for (int c = 0; c < 3; c++)
+        if (!(fabs(v[c] - s[c]) <= CU_SKY_GRID_REL * s[c] + 1e-12)) /* NaN (a degenerate camera): not close */
+            return 0;
+    return 1;
+}
+
+/* Whether cells cw x ch, laid from the viewport's corner and clamped to it as sky.vert lays them, interpolate rows
+ * [y0, y1) well enough (cu_sky_grid_plan). Each cell's two triangles share the diagonal
+ * from its upper left corner to its lower right (sky.vert's strip: lower, upper, lower, ...). */
+static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
+{
+    for (int cy = y0 / ch * ch; cy < y1; cy += ch)
+        for (int cx = 0; cx < in->w; cx += cw) {
+            double x0 = cx, x1 = cx + cw < in->w ? cx + cw : in->w;
+            double ya = cy, yb = cy + ch < in->h ? cy + ch : in->h;
+            double a[3], b[3], c[3], d[3], v[3]; /* (x0, ya), (x1, ya), (x0, yb), (x1, yb) */
+            sky_px(in, x0, ya, a);
+            sky_px(in, x1, ya, b);
+            sky_px(in, x0, yb, c);
+            sky_px(in, x1, yb, d);
+            double xm = 0.5 * (x0 + x1), ym = 0.5 * (ya + yb);
+            for (int k = 0; k < 3; k++)
+                v[k] = 0.5 * (b[k] + c[k]);
+            if (!close_at(in, xm, ym, y0, y1, v))
+                return 0;
+            for (int k = 0; k < 3; k++)
+                v[k] = (a[k] + b[k] + c[k]) / 3.0;
+            if (!close_at(in, (2 * x0 + x1) / 3, (2 * ya + yb) / 3, y0, y1, v))
+                return 0;
+            for (int k = 0; k < 3; k++)
+                v[k] = (b[k] + c[k] + d[k]) / 3.0;
+            if (!close_at(in, (x0 + 2 * x1) / 3, (ya + 2 * yb) / 3, y0, y1, v))
+                return 0;
+            const double *ends[4][2] = {{a, b}, {c, d}, {a, c}, {b, d}};
+            const double at[4][2] = {{xm, ya}, {xm, yb}, {x0, ym}, {x1, ym}};
+            for (int e = 0; e < 4; e++) {
+                for (int k = 0; k < 3; k++)
+                    v[k] = 0.5 * (ends[e][0][k] + ends[e][1][k]);
+                if (!close_at(in, at[e][0], at[e][1], y0, y1, v))
+                    return 0;
+            }
+        }
+    return 1;
+}
+
+int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
+                     unsigned char scale[CU_SKY_BANDS][2])
+{
+    const plan_in in = {tables, sun_dir, m, w, h, sun};
+    int cells = 0;
+    for (int b = 0; b < CU_SKY_BANDS; b++) {
+        scale[b][0] = scale[b][1] = 1;
+        int r0 = b * CU_SKY_BAND, r1 = r0 + CU_SKY_BAND < h ? r0 + CU_SKY_BAND : h;
+        if (r0 >= h || grid <= 0)
+            continue;
+        /* the band's rows of sky alone (0) and near the horizon (1): first and last of each */
+        int first[2] = {r1, r1}, last[2] = {r0 - 1, r0 - 1};
+        for (int r = r0; r < r1; r++) {
+            int part = cu_sky_rows(m, -1.0 + 2.0 * r / h, -1.0 + 2.0 * (r + 1) / h);
+            int k = part == CU_SKY_ABOVE ? 0 : part == CU_SKY_LOW ? 1 : -1;
+            if (k >= 0) {
+                first[k] = r < first[k] ? r : first[k];
+                last[k] = r;
+            }
+        }
+        for (int k = 0; k < 2; k++) {
+            if (last[k] < first[k])
+                continue;
+            int cw = grid, ch = k && grid > 4 ? grid / 4 : grid;
+            for (int s = 4; s >= 2; s /= 2)
+                if (cw * s <= CU_SKY_CELL_MAX && ch * s <= CU_SKY_CELL_MAX &&
+                    cells_fit(&in, cw * s, ch * s, first[k], last[k] + 1)) {
+                    scale[b][k] = (unsigned char)s;
+                    break;
+                }
+            int used = 0; /* the cells drawn (counted without the test) */
+            for (int cy = first[k] / (ch * scale[b][k]) * ch * scale[b][k]; cy <= last[k]; cy += ch * scale[b][k])
+                used += (w + cw * scale[b][k] - 1) / (cw * scale[b][k]);
+            cells += used;
+        }
+    }
+    return cells;
+}
