@@ -3,8 +3,9 @@
 // (homogeneous, through u_inv_viewproj): they are linear in the screen, so the sky's fragments get them interpolated
 // exactly and divide, instead of two matrix products a pixel. With SKY_VERTEX (quality.sky_grid): a grid of cells
 // over rows of the Perez sky instead (1, 2 or 4 times that size a band of rows, where the sky bends little:
-// sky_grid.c), the sky worked out at their corners and interpolated between them: it varies slowly across the screen, and the fragments only tone-map it (pass_sky.c draws the sun's disk and the aureole
-// about it, the horizon and the ground a pixel at a time). With SKY_VERTEX 2: a colour the same at every pixel (the
+// sky_grid.c), the sky worked out at their corners and interpolated between them: it varies slowly across the
+// screen, and the fragments only tone-map it (pass_sky.c draws the sun's disk and the aureole about it, the horizon
+// and the ground a pixel at a time). With SKY_VERTEX 2: a colour the same at every pixel (the
 // ground where no shadow map can reach, a constant sky) worked out once a corner and passed on flat, the display's
 // curve included: the curve alone is most of what a pixel of it cost on llvmpipe (pass_sky.c draws the sun's disk
 // over a constant sky a pixel at a time).
