@@ -97,7 +97,8 @@ void main()
 #if SKY_VERTEX == 2
     o_color = vec4(v_flat, 1.0); // tone-mapped already where SKY_TONEMAP; never with SKY_COMPOSITE (pass_sky.c)
 #elif SKY_VERTEX == 1
-    // The grid's cells hold no sun disk, no horizon and no ground shadow (pass_sky.c draws those a pixel at a time).
+    // The grid's cells hold no sun disk, no horizon and no ground shadow (pass_sky.c draws those a pixel at a time);
+    // with SKY_CORNER_TONE their values are the display's already.
     o_color = vec4(v_sky, 1.0);
 #else
     // The ray's direction from two depths (a perspective ray through the origin, or an orthographic view's one).
@@ -119,7 +120,7 @@ void main()
     vec4 c = clouds_at(gl_FragCoord.xy); // at a factor of 1 the weights are exactly 1 and 0: the pixel's texel
     o_color.rgb = c.rgb + (1.0 - c.a) * o_color.rgb;
 #endif
-#if SKY_TONEMAP && SKY_VERTEX != 2
+#if SKY_TONEMAP && SKY_VERTEX != 2 && !(SKY_VERTEX == 1 && SKY_CORNER_TONE)
     o_color = vec4(tone_curve(o_color.rgb), 1.0);
 #endif
 }

@@ -5,7 +5,8 @@
 // The variants (pass_sky.c): SKY_TONEMAP, the display's colours; SKY_COMPOSITE, a cloud image over the sky on the way;
 // SKY_PART 0 draws rows that hold the horizon, 1 rows of sky alone, 2 rows of ground alone (a software rasteriser,
 // llvmpipe in Mesa 22, runs both sides of a branch on every pixel, so rows without the horizon take a program
-// without it); SKY_VERTEX, the sky from the grid's corners.
+// without it); SKY_VERTEX, the sky from the grid's corners; SKY_CORNER_TONE (with SKY_TONEMAP and SKY_VERTEX 1), the
+// display's curve at the corners too (a frame of sky alone, where pass_sky.c's plan allows it: sky_grid.c).
 #ifndef SKY_TONEMAP
 #define SKY_TONEMAP 0
 #endif
@@ -17,6 +18,9 @@
 #endif
 #ifndef SKY_VERTEX
 #define SKY_VERTEX 0
+#endif
+#ifndef SKY_CORNER_TONE
+#define SKY_CORNER_TONE 0
 #endif
 precision highp float;
 precision highp sampler2D; // lowp by default: the tables need their full precision (and both stages must agree)

@@ -14,6 +14,9 @@
 #endif
 #if SKY_VERTEX == 1
 #include "sky.glsl"
+#if SKY_CORNER_TONE
+#include "tonecurve.glsl"
+#endif
 uniform mat4 u_inv_viewproj;   // clip -> direction (camera at the origin)
 uniform vec4 u_grid_box;       // the grid's first corner and its last (pixels)
 uniform vec2 u_grid_cell;      // a cell's width and height in pixels
@@ -32,6 +35,9 @@ void main()
     // rows of the Perez sky alone (pass_sky.c): linear, the display's curve at every pixel, as the sky drawn under
     // the clouds gets it later
     v_sky = exposed(perez_sky(normalize(f.xyz / f.w - n.xyz / n.w)));
+#if SKY_CORNER_TONE
+    v_sky = tone_curve(v_sky); // the display's values interpolated: within sky_grid.c's bound where the plan allows
+#endif
     gl_Position = vec4(p, 0.0, 1.0);
 }
 #elif SKY_VERTEX == 2

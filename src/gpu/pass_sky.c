@@ -25,7 +25,8 @@ static void locs_get(const cu_gl *gl, GLuint prog, cu_sky_locs *l)
 static int program(cu_pass_sky *p, const cu_gl *gl, int kind, int part, int maps, int shape, cu_error *err)
 {
     static const char *const kinds[CU_SKY_KINDS] = {"", "#define SKY_TONEMAP 1\n",
-                                                    "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n"};
+                                                    "#define SKY_TONEMAP 1\n#define SKY_COMPOSITE 1\n",
+                                                    "#define SKY_TONEMAP 1\n#define SKY_CORNER_TONE 1\n"};
     if (p->prog[kind][part][maps][shape])
         return 0;
     char defs[2200];
@@ -45,7 +46,7 @@ int cu_pass_sky_create(cu_pass_sky *p, const cu_gpu_scene *ctx, const char *defi
     if (snprintf(p->defines, sizeof p->defines, "%s#define SKY_TABLE %d\n", defines, CU_SKY_TABLE) >=
         (int)sizeof p->defines)
         return cu_fail(err, "sky: shader defines too long");
-    for (int kind = 0; kind < CU_SKY_KINDS; kind++)
+    for (int kind = 0; kind < CU_SKY_ALONE; kind++) /* CU_SKY_ALONE draws a pixel at a time as CU_SKY_OUT */
         if (program(p, gl, kind, CU_SKY_BOTH, 0, CU_SKY_PIXEL, err))
             return 1;
     gl->GenTextures(1, &p->tables);
@@ -183,9 +184,12 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
     int shape = !sun ? CU_SKY_PIXEL
               : k != CU_SKY_OVER && (constant || (part == CU_SKY_BELOW && maps == 0)) ? CU_SKY_FLAT
               : cell > 0 && part == CU_SKY_ABOVE && !constant ? CU_SKY_GRID : CU_SKY_PIXEL;
+    int band = box[1] / CU_SKY_BAND < CU_SKY_BANDS ? box[1] / CU_SKY_BAND : CU_SKY_BANDS - 1;
+    int toned = shape == CU_SKY_GRID && k == CU_SKY_ALONE ? pass->toned[band][low] : 0;
+    if (k == CU_SKY_ALONE && !toned) /* the curve at every pixel */
+        k = CU_SKY_OUT;
     if (shape == CU_SKY_GRID) { /* the cells of the box's band (draw's runs keep to one) */
-        int band = box[1] / CU_SKY_BAND, scale = band < CU_SKY_BANDS ? pass->scale[band][low] : 1;
-        scale = scale > 0 ? scale : 1; /* no plan made (draw makes one first) */
+        int scale = toned ? toned : pass->scale[band][low] > 0 ? pass->scale[band][low] : 1; /* 0: no plan yet */
         cell *= scale;
         high *= scale;
     }
@@ -266,9 +270,13 @@ static void shadow_box(const cu_gpu_scene *ctx, int maps, int w, int h, int box[
 
 /* The grid's cells for this frame (cu_sky_grid_plan), made again only when what they depend on changed: the sky's
  * matrix, the sun, the sky's coefficients, the viewport and quality.sky_grid (the sun's box follows from those). */
-static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const int sun[4])
+static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const int sun[4], int toned)
 {
-    double of[43];
+    double of[48] = {0}, display[4] = {0, 0, 0, cu_out_max(ctx)};
+    float os[3];
+    cu_out_scale(ctx, os);
+    for (int c = 0; c < 3; c++)
+        display[c] = os[c];
     for (int i = 0; i < 16; i++)
         of[i] = ctx->camera.inv_rot[i];
     of[16] = ctx->sun_dir.x;
@@ -284,10 +292,18 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
     of[40] = w;
     of[41] = h;
     of[42] = ctx->scene->sky_grid;
+    of[43] = toned;
+    if (toned)
+        memcpy(of + 44, display, sizeof display);
     if (pass->plan_made && !memcmp(of, pass->plan_of, sizeof of))
         return;
     tables_update(pass, ctx->gl, ctx->sky);
     cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, pass->scale);
+    if (toned)
+        cu_sky_grid_toned(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, display,
+                          (const unsigned char(*)[2])pass->scale, pass->toned);
+    else
+        memset(pass->toned, 0, sizeof pass->toned);
     memcpy(pass->plan_of, of, sizeof of);
     pass->plan_made = 1;
 }
@@ -326,7 +342,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
         shadow_box(ctx, maps, w, h, shade);
     int banded = ctx->scene->sky_grid > 0 && split;
     if (banded)
-        plan(pass, ctx, w, h, sun);
+        plan(pass, ctx, w, h, sun, kind == CU_SKY_ALONE);
     gl->Enable(GL_SCISSOR_TEST);
     for (int row = 0; row < h && !rc;) {
         /* a run: rows holding the same part, all on the same side of the cloud image's rows and the shadows' */
@@ -367,7 +383,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
 int cu_pass_sky_draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int to_output, cu_error *err)
 {
     static const int everywhere[4] = {0, 0, 1 << 30, 1 << 30};
-    return draw(pass, ctx, to_output ? CU_SKY_OUT : CU_SKY_HDR, 1, everywhere, err);
+    return draw(pass, ctx, to_output ? CU_SKY_ALONE : CU_SKY_HDR, 1, everywhere, err);
 }
 
 int cu_pass_sky_draw_over(cu_pass_sky *pass, const cu_gpu_scene *ctx, GLuint clouds, GLuint refined, int factor,

@@ -13,10 +13,11 @@ typedef struct cu_sky_locs {
     GLint grid_box, grid_cell, grid_size, grid_cols;
 } cu_sky_locs;
 
-/* The programs by kind: radiance into the HDR target under the clouds; for a frame with no cloud in view, the
- * display's colours straight into the output (the tone map's curve in the same pass: one full-screen pass, not two);
- * the same with a cloud image composited on the way. */
-enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_KINDS };
+/* The programs by kind: radiance into the HDR target under the clouds; the display's colours straight into the
+ * output (the tone map's curve in the same pass: one full-screen pass, not two), beside a cloud image composited;
+ * the same with the image composited on the way; and for a frame with no cloud in view, the display's colours with
+ * the curve taken at the grid's corners where the plan allows (sky_grid.h cu_sky_grid_toned; elsewhere as OUT). */
+enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_ALONE, CU_SKY_KINDS };
 /* And by the rows they draw (sky_grid.h: CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW). */
 /* And by how many of the ground's shadow maps hold shadows (gpu_scene.h ground_maps: 0 to CU_GROUND_MAPS); and by
  * where the colour is worked out (sky.vert's SKY_VERTEX): at every pixel; at the corners of quality.sky_grid's cells
@@ -33,7 +34,9 @@ typedef struct cu_pass_sky {
     int tables_built;
     float table[2 * 4 * CU_SKY_TABLE]; /* the same tables on the CPU (grid_plan's estimate) */
     unsigned char scale[CU_SKY_BANDS][2]; /* the grid's cells by band of rows (cu_sky_grid_plan) */
-    double plan_of[43];         /* what scale was made for: the sky's matrix, the sun, the tables, size and grid */
+    unsigned char toned[CU_SKY_BANDS][2]; /* with the curve at their corners (cu_sky_grid_toned; 0: at every pixel) */
+    double plan_of[48];         /* what they were made for: the sky's matrix, the sun, the tables, size, grid and,
+                                 * for toned, the exposure and the cap (toned made only for CU_SKY_ALONE) */
     int plan_made;
     int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */
 } cu_pass_sky;

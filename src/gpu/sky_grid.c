@@ -1,5 +1,6 @@
 /* src/gpu/sky_grid.c: the sky pass's geometry on the CPU (see sky_grid.h). */
 #include "sky_grid.h"
+#include "tonemap.h"
 
 vec3 cu_sky_dir(const float *m, double x, double y)
 {
@@ -33,25 +34,35 @@ typedef struct plan_in {
     const float *m;
     int w, h;
     const int *sun;
+    const double *display; /* NULL: radiance; else the exposure's scale by channel and the cap (cu_sky_grid_toned) */
 } plan_in;
 
-/* The sky the tables give at pixel (x, y) of the viewport, as a corner of sky.vert's grid sees it. */
+/* The sky the tables give at pixel (x, y) of the viewport, as a corner of sky.vert's grid sees it: radiance, or the
+ * display's value (0..1) as sky.vert makes it with SKY_CORNER_TONE: tone_curve(exposed(L)). */
 static void sky_px(const plan_in *in, double x, double y, double out[3])
 {
     vec3 d = cu_sky_dir(in->m, 2.0 * x / in->w - 1.0, 2.0 * y / in->h - 1.0);
     cu_sky_from_tables(in->tables, in->tables + 4 * CU_SKY_TABLE, in->sun_dir, d, out);
+    if (in->display)
+        for (int c = 0; c < 3; c++) {
+            double e = fmin(out[c] * in->display[c], in->display[3]);
+            out[c] = cu_tonemap_srgb(cu_tonemap_aces(e > 0 ? e : 0));
+        }
 }
 
-/* Whether the interpolation at point (x, y) of rows [y0, y1) stays within CU_SKY_GRID_REL of the sky there. */
+/* Whether the interpolation at point (x, y) of rows [y0, y1) stays close enough to the sky there: within
+ * CU_SKY_GRID_REL of its radiance, or CU_SKY_GRID_LEVELS of the display's levels. */
 static int close_at(const plan_in *in, double x, double y, int y0, int y1, const double v[3])
 {
     if (y < y0 || y >= y1 || (x >= in->sun[0] && x < in->sun[2] && y >= in->sun[1] && y < in->sun[3]))
         return 1;
     double s[3];
     sky_px(in, x, y, s);
-    for (int c = 0; c < 3; c++)
-        if (!(fabs(v[c] - s[c]) <= CU_SKY_GRID_REL * s[c] + 1e-12)) /* NaN (a degenerate camera): not close */
+    for (int c = 0; c < 3; c++) {
+        double bound = in->display ? CU_SKY_GRID_LEVELS / 255.0 : CU_SKY_GRID_REL * s[c] + 1e-12;
+        if (!(fabs(v[c] - s[c]) <= bound)) /* NaN (a degenerate camera): not close */
             return 0;
+    }
     return 1;
 }
 
@@ -94,13 +105,14 @@ static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
     return 1;
 }
 
-int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
-                     unsigned char scale[CU_SKY_BANDS][2])
+/* cu_sky_grid_plan's bands with the scales tried, largest first, down to 2 (least NULL: 1 without a test), or down to
+ * least's (0 where none passes). */
+static int bands(const plan_in *in, int grid, const unsigned char (*least)[2], unsigned char scale[CU_SKY_BANDS][2])
 {
-    const plan_in in = {tables, sun_dir, m, w, h, sun};
-    int cells = 0;
+    int w = in->w, h = in->h, cells = 0;
+    const float *m = in->m;
     for (int b = 0; b < CU_SKY_BANDS; b++) {
-        scale[b][0] = scale[b][1] = 1;
+        scale[b][0] = scale[b][1] = least ? 0 : 1;
         int r0 = b * CU_SKY_BAND, r1 = r0 + CU_SKY_BAND < h ? r0 + CU_SKY_BAND : h;
         if (r0 >= h || grid <= 0)
             continue;
@@ -118,17 +130,31 @@ int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, i
             if (last[k] < first[k])
                 continue;
             int cw = grid, ch = k && grid > 4 ? grid / 4 : grid;
-            for (int s = 4; s >= 2; s /= 2)
+            for (int s = 4; least ? s >= least[b][k] && s >= 1 : s >= 2; s /= 2)
                 if (cw * s <= CU_SKY_CELL_MAX && ch * s <= CU_SKY_CELL_MAX &&
-                    cells_fit(&in, cw * s, ch * s, first[k], last[k] + 1)) {
+                    cells_fit(in, cw * s, ch * s, first[k], last[k] + 1)) {
                     scale[b][k] = (unsigned char)s;
                     break;
                 }
-            int used = 0; /* the cells drawn (counted without the test) */
-            for (int cy = first[k] / (ch * scale[b][k]) * ch * scale[b][k]; cy <= last[k]; cy += ch * scale[b][k])
-                used += (w + cw * scale[b][k] - 1) / (cw * scale[b][k]);
-            cells += used;
+            int s = scale[b][k]; /* the cells drawn (counted without the test) */
+            for (int cy = s ? first[k] / (ch * s) * ch * s : last[k] + 1; cy <= last[k]; cy += ch * s)
+                cells += (w + cw * s - 1) / (cw * s);
         }
     }
     return cells;
+}
+
+int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
+                     unsigned char scale[CU_SKY_BANDS][2])
+{
+    const plan_in in = {tables, sun_dir, m, w, h, sun, NULL};
+    return bands(&in, grid, NULL, scale);
+}
+
+int cu_sky_grid_toned(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
+                      const double display[4], const unsigned char plan[CU_SKY_BANDS][2],
+                      unsigned char scale[CU_SKY_BANDS][2])
+{
+    const plan_in in = {tables, sun_dir, m, w, h, sun, display};
+    return bands(&in, grid, plan, scale);
 }

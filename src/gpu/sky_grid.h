@@ -22,6 +22,7 @@ enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
 #define CU_SKY_BANDS (16384 / CU_SKY_BAND) /* output.size's largest */
 #define CU_SKY_CELL_MAX 64
 #define CU_SKY_GRID_REL 0.01
+#define CU_SKY_GRID_LEVELS 0.3 /* of 255: the display's values interpolated (cu_sky_grid_toned) */
 
 /* The view direction (unit) at the viewport's NDC (x, y) through the sky's matrix m (column-major, clip ->
  * direction), as sky.vert and sky.frag make it. */
@@ -39,4 +40,13 @@ int cu_sky_rows(const float *m, double y0, double y1);
  * rows of sky take (a measure for tests and logs). */
 int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
                      unsigned char scale[CU_SKY_BANDS][2]);
+/* The same for cells that carry the display's values (a frame of sky alone: sky.vert with SKY_CORNER_TONE, the tone
+ * curve at the corners instead of at every pixel): the largest scale, 4 down to plan's (cu_sky_grid_plan: never more
+ * cells than the curve at every pixel takes, whose triangles cost more than the curve on llvmpipe), whose
+ * interpolated display values stay within CU_SKY_GRID_LEVELS levels of the curve of the sky at the points tested; 0
+ * where none does (the band keeps the curve at every pixel). display: the exposure's scale by channel (cu_out_scale)
+ * and the cap (cu_out_max). Returns the cells those bands take. */
+int cu_sky_grid_toned(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
+                      const double display[4], const unsigned char plan[CU_SKY_BANDS][2],
+                      unsigned char scale[CU_SKY_BANDS][2]);
 #endif

@@ -12,6 +12,7 @@
 #include <string.h>
 #include "scene.h"
 #include "sky_grid.h"
+#include "tonemap.h"
 
 typedef struct view {
     double elevation, turbidity; /* the sun */
@@ -25,6 +26,8 @@ typedef struct sky_ctx {
     vec3 sun;
     float m[16];
     int w, h;
+    double display[4];  /* the exposure's scale by channel and the cap, as the renderer gives them (fp16 target) */
+    int toned;          /* sky_px gives the display's values (0..1) */
 } sky_ctx;
 
 static const int no_sun[4] = {1 << 30, 1 << 30, 0, 0};
@@ -42,6 +45,12 @@ static void make(sky_ctx *c, const view *v)
     assert_int_equal(cu_scene_set(s, "sky.model=preetham", &e), 0);
     cu_sky sky;
     cu_sky_compute(&sky, s);
+    double white[3];
+    cu_sky_white_balance(s, white);
+    for (int k = 0; k < 3; k++)
+        c->display[k] = (float)(s->exposure / white[k]);
+    c->display[3] = 30000.0f;
+    c->toned = 0;
     cu_scene_free(s);
     cu_sky_tables(&sky, c->tables, c->tables + 4 * CU_SKY_TABLE);
     c->sun = sky.sun_dir;
@@ -64,12 +73,16 @@ static void sky_px(const sky_ctx *c, double x, double y, double out[3])
 {
     vec3 d = cu_sky_dir(c->m, 2.0 * x / c->w - 1.0, 2.0 * y / c->h - 1.0);
     cu_sky_from_tables(c->tables, c->tables + 4 * CU_SKY_TABLE, c->sun, d, out);
+    if (c->toned)
+        for (int k = 0; k < 3; k++)
+            out[k] = cu_tonemap_srgb(cu_tonemap_aces(fmax(fmin(out[k] * c->display[k], c->display[3]), 0.0)));
 }
 
-/* The largest relative error of any channel, over every pixel of the rows of sky alone (kind 0) or near the horizon
- * (kind 1) outside the sun's box, of cells `grid` pixels (the horizon's a quarter as high) times the scale of each
- * band (NULL: scale `all` everywhere), as sky.vert lays them: corners at multiples of the cell from the viewport's
- * corner, clamped to it; triangles (lower left, upper left, lower right) and (upper left, lower right, upper right). */
+/* The largest error of any channel (relative, or with c->toned in the display's levels), over every pixel of the rows
+ * of sky alone (kind 0) or near the horizon (kind 1) outside the sun's box, of cells `grid` pixels (the horizon's a
+ * quarter as high) times the scale of each band (NULL: scale `all` everywhere; a band's 0: not counted), as sky.vert
+ * lays them: corners at multiples of the cell from the viewport's corner, clamped to it; triangles (lower left, upper
+ * left, lower right) and (upper left, lower right, upper right). */
 static double dense_error(const sky_ctx *c, int grid, unsigned char scale[CU_SKY_BANDS][2], int all, const int sun[4],
                           int *pixels)
 {
@@ -80,7 +93,7 @@ static double dense_error(const sky_ctx *c, int grid, unsigned char scale[CU_SKY
         if (k < 0)
             continue;
         int s = scale ? scale[y / CU_SKY_BAND][k] : all, cw = grid * s, ch = (k && grid > 4 ? grid / 4 : grid) * s;
-        for (int x = 0; x < c->w; x++) {
+        for (int x = 0; x < c->w && s > 0; x++) {
             double px = x + 0.5, py = y + 0.5;
             if (px >= sun[0] && px < sun[2] && py >= sun[1] && py < sun[3])
                 continue;
@@ -96,7 +109,8 @@ static double dense_error(const sky_ctx *c, int grid, unsigned char scale[CU_SKY
             for (int ch3 = 0; ch3 < 3; ch3++) {
                 double got = u + v <= 1 ? a[ch3] + u * (b[ch3] - a[ch3]) + v * (cc[ch3] - a[ch3])
                                         : d[ch3] + (1 - u) * (cc[ch3] - d[ch3]) + (1 - v) * (b[ch3] - d[ch3]);
-                worst = fmax(worst, fabs(got - exact[ch3]) / fmax(exact[ch3], 1e-9));
+                worst = fmax(worst, c->toned ? 255.0 * fabs(got - exact[ch3])
+                                             : fabs(got - exact[ch3]) / fmax(exact[ch3], 1e-9));
             }
             ++*pixels;
         }
@@ -114,7 +128,8 @@ static const view views[] = {
 };
 
 /* Where the plan grows the cells, every pixel is within its bound of the sky (with room for what a few points a cell
- * cannot see: measured worst below); and it grows them on the views where the sky is smooth. */
+ * cannot see: measured 0.0095 at most, against the bound's 0.01), or no worse than the 16-pixel cells' own error; and
+ * it grows them on the views where the sky is smooth. */
 static void test_plan_keeps_its_bound(void **st)
 {
     (void)st;
@@ -157,6 +172,46 @@ static void test_plan_keeps_small_cells_where_the_sky_bends(void **st)
     assert_false(all4);
 }
 
+/* A frame of sky alone takes the display's values at the corners where the plan allows (cu_sky_grid_toned): there
+ * every pixel's interpolated display value is within 1.5 times the bound of the curve of its sky (measured 0.36
+ * levels at most, against the bound's 0.3), never with more cells than the radiance's plan; and it does so somewhere
+ * on the views where the sky is smooth. Cells four times as large everywhere toward the low sun are off by more: the
+ * bound can fail. */
+static void test_toned_plan(void **st)
+{
+    (void)st;
+    static unsigned char scale[CU_SKY_BANDS][2], toned[CU_SKY_BANDS][2];
+    int toned_level = 0;
+    for (size_t i = 0; i < sizeof views / sizeof views[0]; i++) {
+        sky_ctx c;
+        make(&c, &views[i]);
+        cu_sky_grid_plan(c.tables, c.sun, c.m, c.w, c.h, 16, no_sun, scale);
+        int cells = cu_sky_grid_toned(c.tables, c.sun, c.m, c.w, c.h, 16, no_sun, c.display,
+                                      (const unsigned char(*)[2])scale, toned);
+        int bands = 0, n = 0;
+        for (int b = 0; b < CU_SKY_BANDS; b++)
+            for (int k = 0; k < 2; k++) {
+                assert_true(toned[b][k] == 0 || (toned[b][k] >= scale[b][k] && toned[b][k] <= 4));
+                bands += toned[b][k] > 0;
+            }
+        c.toned = 1;
+        double levels = dense_error(&c, 16, toned, 1, no_sun, &n);
+        printf("view %zu: %d bands with the curve at the corners, %d cells, %d pixels: within %.3f levels\n", i, bands,
+               cells, n, levels);
+        assert_true(levels <= 1.5 * CU_SKY_GRID_LEVELS);
+        if (i == 0)
+            toned_level = bands;
+    }
+    assert_true(toned_level >= 3);
+    sky_ctx c;
+    make(&c, &views[4]);
+    c.toned = 1;
+    int n = 0;
+    double coarse = dense_error(&c, 16, NULL, 4, no_sun, &n);
+    printf("low sun: the curve at the corners of 64-pixel cells everywhere: %.2f levels off\n", coarse);
+    assert_true(coarse > 2 * CU_SKY_GRID_LEVELS);
+}
+
 /* Grids that cannot grow (64 pixels: the largest cell already; 0: no grid), a one-pixel viewport, and a degenerate
  * camera (NaN directions) keep every band at 1; bands past the viewport are 1. */
 static void test_plan_degenerate(void **st)
@@ -178,10 +233,19 @@ static void test_plan_degenerate(void **st)
     float nan_m[16];
     for (int i = 0; i < 16; i++)
         nan_m[i] = NAN;
+    static unsigned char toned[CU_SKY_BANDS][2];
     cu_sky_grid_plan(c.tables, c.sun, nan_m, c.w, c.h, 16, no_sun, scale);
+    cu_sky_grid_toned(c.tables, c.sun, nan_m, c.w, c.h, 16, no_sun, c.display, (const unsigned char(*)[2])scale,
+                      toned);
     for (int b = 0; b < CU_SKY_BANDS; b++)
-        for (int k = 0; k < 2; k++)
+        for (int k = 0; k < 2; k++) {
             assert_int_equal(scale[b][k], 1);
+            assert_int_equal(toned[b][k], 0); /* a NaN sky: the curve at every pixel (it makes the NaN black) */
+        }
+    cu_sky_grid_plan(c.tables, c.sun, c.m, c.w, c.h, 0, no_sun, scale);
+    cu_sky_grid_toned(c.tables, c.sun, c.m, c.w, c.h, 0, no_sun, c.display, (const unsigned char(*)[2])scale, toned);
+    for (int b = 0; b < CU_SKY_BANDS; b++)
+        assert_true(toned[b][0] == 0 && toned[b][1] == 0);
     cu_sky_grid_plan(c.tables, c.sun, c.m, c.w, c.h, 16, no_sun, scale);
     for (int b = (c.h + CU_SKY_BAND - 1) / CU_SKY_BAND; b < CU_SKY_BANDS; b++)
         assert_true(scale[b][0] == 1 && scale[b][1] == 1);
@@ -191,6 +255,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_plan_keeps_its_bound),
                                        cmocka_unit_test(test_plan_keeps_small_cells_where_the_sky_bends),
+                                       cmocka_unit_test(test_toned_plan),
                                        cmocka_unit_test(test_plan_degenerate)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
