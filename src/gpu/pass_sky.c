@@ -301,7 +301,7 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
     cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, pass->scale);
     if (toned)
         cu_sky_grid_toned(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, display,
-                          (const unsigned char(*)[2])pass->scale, pass->toned);
+                          pass->toned);
     else
         memset(pass->toned, 0, sizeof pass->toned);
     memcpy(pass->plan_of, of, sizeof of);

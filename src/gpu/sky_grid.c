@@ -105,14 +105,14 @@ static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
     return 1;
 }
 
-/* cu_sky_grid_plan's bands with the scales tried, largest first, down to 2 (least NULL: 1 without a test), or down to
- * least's (0 where none passes). */
-static int bands(const plan_in *in, int grid, const unsigned char (*least)[2], unsigned char scale[CU_SKY_BANDS][2])
+/* cu_sky_grid_plan's bands with the scales tried, largest first, down to `least` (1: the last without a test; 0:
+ * every one tested, 0 where none passes). */
+static int bands(const plan_in *in, int grid, int least, unsigned char scale[CU_SKY_BANDS][2])
 {
     int w = in->w, h = in->h, cells = 0;
     const float *m = in->m;
     for (int b = 0; b < CU_SKY_BANDS; b++) {
-        scale[b][0] = scale[b][1] = least ? 0 : 1;
+        scale[b][0] = scale[b][1] = (unsigned char)least;
         int r0 = b * CU_SKY_BAND, r1 = r0 + CU_SKY_BAND < h ? r0 + CU_SKY_BAND : h;
         if (r0 >= h || grid <= 0)
             continue;
@@ -130,7 +130,7 @@ static int bands(const plan_in *in, int grid, const unsigned char (*least)[2], u
             if (last[k] < first[k])
                 continue;
             int cw = grid, ch = k && grid > 4 ? grid / 4 : grid;
-            for (int s = 4; least ? s >= least[b][k] && s >= 1 : s >= 2; s /= 2)
+            for (int s = 4; s > least; s /= 2)
                 if (cw * s <= CU_SKY_CELL_MAX && ch * s <= CU_SKY_CELL_MAX &&
                     cells_fit(in, cw * s, ch * s, first[k], last[k] + 1)) {
                     scale[b][k] = (unsigned char)s;
@@ -148,13 +148,12 @@ int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, i
                      unsigned char scale[CU_SKY_BANDS][2])
 {
     const plan_in in = {tables, sun_dir, m, w, h, sun, NULL};
-    return bands(&in, grid, NULL, scale);
+    return bands(&in, grid, 1, scale);
 }
 
 int cu_sky_grid_toned(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
-                      const double display[4], const unsigned char plan[CU_SKY_BANDS][2],
-                      unsigned char scale[CU_SKY_BANDS][2])
+                      const double display[4], unsigned char scale[CU_SKY_BANDS][2])
 {
     const plan_in in = {tables, sun_dir, m, w, h, sun, display};
-    return bands(&in, grid, plan, scale);
+    return bands(&in, grid, 0, scale);
 }

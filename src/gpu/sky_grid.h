@@ -41,12 +41,11 @@ int cu_sky_rows(const float *m, double y0, double y1);
 int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
                      unsigned char scale[CU_SKY_BANDS][2]);
 /* The same for cells that carry the display's values (a frame of sky alone: sky.vert with SKY_CORNER_TONE, the tone
- * curve at the corners instead of at every pixel): the largest scale, 4 down to plan's (cu_sky_grid_plan: never more
- * cells than the curve at every pixel takes, whose triangles cost more than the curve on llvmpipe), whose
- * interpolated display values stay within CU_SKY_GRID_LEVELS levels of the curve of the sky at the points tested; 0
- * where none does (the band keeps the curve at every pixel). display: the exposure's scale by channel (cu_out_scale)
- * and the cap (cu_out_max). Returns the cells those bands take. */
+ * curve at the corners instead of at every pixel): the largest scale (4, 2, 1) whose interpolated display values
+ * stay within CU_SKY_GRID_LEVELS levels of the curve of the sky at the points tested; 0 where none does (the band
+ * keeps the curve at every pixel, with cu_sky_grid_plan's cells). It may take smaller cells than that plan: on
+ * llvmpipe the curve at every pixel costs more than the triangles (tools/bench/sky.sh). display: the exposure's scale
+ * by channel (cu_out_scale) and the cap (cu_out_max). Returns the cells those bands take. */
 int cu_sky_grid_toned(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
-                      const double display[4], const unsigned char plan[CU_SKY_BANDS][2],
-                      unsigned char scale[CU_SKY_BANDS][2]);
+                      const double display[4], unsigned char scale[CU_SKY_BANDS][2]);
 #endif
