@@ -124,29 +124,37 @@ static void test_tiny_threshold_is_full_resolution(void **st)
     free(got8);
 }
 
+/* scene with `setting` (NULL: none): medium's frame, and low's and low's with edge_refine 1e-6 against it (linear). */
+static void low_and_refined(const char *scene, const char *setting, diff *low, diff *refined)
+{
+    const char *const plain[] = {setting, NULL}, *const tiny[] = {setting ? setting : TINY[0], setting ? TINY[0] : NULL,
+                                                                   NULL};
+    float *full = malloc(sizeof(float) * 3 * W * H), *got = malloc(sizeof(float) * 3 * W * H);
+    assert_true(full && got);
+    render(scene, "quality.preset=medium", plain, 1, full, NULL);
+    render(scene, "quality.preset=low", plain, 1, got, NULL);
+    *low = compare(got, full);
+    render(scene, "quality.preset=low", tiny, 1, got, NULL);
+    *refined = compare(got, full);
+    free(full);
+    free(got);
+}
+
 /* Many clouds drawn one after another into the refinement target, each clearing the depth and stencil it used:
- * the marks must outlive those clears. Impostors off (their images are made at the cloud pass's resolution, so they
- * differ between low and medium by design). At most a few pixels may differ: a cloud smaller than a low-resolution
- * texel that the half-resolution pass missed entirely leaves no neighbour to differ (measured: 1 pixel of 19200). */
+ * the marks must outlive those clears. Impostors off (the default, set so that another default cannot change what
+ * this tests: their images are made at the cloud pass's resolution, so they differ between low and medium by
+ * design). At most a few pixels may differ: a cloud smaller than a low-resolution texel that the half-resolution pass
+ * missed entirely leaves no neighbour to differ (measured: 1 pixel of 19200). */
 static void test_field_keeps_marks(void **st)
 {
     (void)st;
-    static const char *const no_imp[] = {"quality.impostor_pixels=0", NULL};
-    static const char *const tiny[] = {"quality.impostor_pixels=0", "quality.edge_refine=0.000001", NULL};
-    float *full = malloc(sizeof(float) * 3 * W * H), *got = malloc(sizeof(float) * 3 * W * H);
-    assert_true(full && got);
-    render("scenes/field_noon.scene", "quality.preset=medium", no_imp, 1, full, NULL);
-    render("scenes/field_noon.scene", "quality.preset=low", no_imp, 1, got, NULL);
-    diff low = compare(got, full);
-    render("scenes/field_noon.scene", "quality.preset=low", tiny, 1, got, NULL);
-    diff ref = compare(got, full);
+    diff low, ref;
+    low_and_refined("scenes/field_noon.scene", "quality.impostor_pixels=0", &low, &ref);
     printf("field: low %d pixels off by > 1 %%, edge_refine 1e-6 %d; cloud rel. RMSE %.4f -> %.5f\n", low.off,
            ref.off, low.rel_rmse, ref.rel_rmse);
     assert_true(low.off > 1000);
     assert_true(ref.off <= 5);
     assert_true(ref.rel_rmse < 0.01 * low.rel_rmse);
-    free(full);
-    free(got);
 }
 
 /* Clouds drawn from impostors (quality.impostor_pixels) among them: each impostor is drawn into the refinement
@@ -157,21 +165,12 @@ static void test_field_keeps_marks(void **st)
 static void test_field_impostors(void **st)
 {
     (void)st;
-    static const char *const imp[] = {"quality.impostor_pixels=48", NULL};
-    static const char *const tiny[] = {"quality.impostor_pixels=48", "quality.edge_refine=0.000001", NULL};
-    float *full = malloc(sizeof(float) * 3 * W * H), *got = malloc(sizeof(float) * 3 * W * H);
-    assert_true(full && got);
-    render("scenes/field_noon.scene", "quality.preset=medium", imp, 1, full, NULL);
-    render("scenes/field_noon.scene", "quality.preset=low", imp, 1, got, NULL);
-    diff low = compare(got, full);
-    render("scenes/field_noon.scene", "quality.preset=low", tiny, 1, got, NULL);
-    diff ref = compare(got, full);
+    diff low, ref;
+    low_and_refined("scenes/field_noon.scene", "quality.impostor_pixels=48", &low, &ref);
     printf("field with impostors: mean |difference| from medium: low %.4g, edge_refine 1e-6 %.4g\n", low.mean_abs,
            ref.mean_abs);
     assert_true(low.mean_abs > 0);
     assert_true(ref.mean_abs < 0.25 * low.mean_abs);
-    free(full);
-    free(got);
 }
 
 /* A threshold of 1 marks nothing (neither measure can exceed it): the frame is low's, bit for bit, through both
@@ -231,21 +230,13 @@ static void test_error_falls_with_threshold(void **st)
 static void test_inside(void **st)
 {
     (void)st;
-    const char *scene = "scenes/inside.scene";
-    float *full = malloc(sizeof(float) * 3 * W * H), *got = malloc(sizeof(float) * 3 * W * H);
-    assert_true(full && got);
-    render(scene, "quality.preset=medium", NULL, 1, full, NULL);
-    render(scene, "quality.preset=low", NULL, 1, got, NULL);
-    diff low = compare(got, full);
-    render(scene, "quality.preset=low", TINY, 1, got, NULL);
-    diff tiny = compare(got, full);
+    diff low, tiny;
+    low_and_refined("scenes/inside.scene", NULL, &low, &tiny);
     printf("inside: mean |difference| from medium: low %.3g, edge_refine 1e-6 %.3g (worst relative %.3g)\n",
            low.mean_abs, tiny.mean_abs, tiny.worst);
     assert_true(low.mean_abs > 0);
     assert_true(tiny.mean_abs < 0.1 * low.mean_abs);
     assert_true(tiny.worst < 0.005);
-    free(full);
-    free(got);
 }
 
 int main(void)
