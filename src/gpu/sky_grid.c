@@ -67,38 +67,35 @@ static int close_at(const plan_in *in, double x, double y, int y0, int y1, const
 }
 
 /* Whether cells cw x ch, laid from the viewport's corner and clamped to it as sky.vert lays them, interpolate rows
- * [y0, y1) well enough (cu_sky_grid_plan). Each cell's two triangles share the diagonal
- * from its upper left corner to its lower right (sky.vert's strip: lower, upper, lower, ...). */
+ * [y0, y1) well enough (cu_sky_grid_plan). Each cell's two triangles share the diagonal from its upper left corner to
+ * its lower right (sky.vert's strip: lower, upper, lower, ...). Tested: the part of the cell within the rows (a cell
+ * may reach past them, its corners below the horizon), at its corners, edges' midpoints and centre, and at the
+ * centroids of the cell's triangles. */
 static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
 {
     for (int cy = y0 / ch * ch; cy < y1; cy += ch)
         for (int cx = 0; cx < in->w; cx += cw) {
             double x0 = cx, x1 = cx + cw < in->w ? cx + cw : in->w;
             double ya = cy, yb = cy + ch < in->h ? cy + ch : in->h;
-            double a[3], b[3], c[3], d[3], v[3]; /* (x0, ya), (x1, ya), (x0, yb), (x1, yb) */
-            sky_px(in, x0, ya, a);
-            sky_px(in, x1, ya, b);
-            sky_px(in, x0, yb, c);
-            sky_px(in, x1, yb, d);
-            double xm = 0.5 * (x0 + x1), ym = 0.5 * (ya + yb);
-            for (int k = 0; k < 3; k++)
-                v[k] = 0.5 * (b[k] + c[k]);
-            if (!close_at(in, xm, ym, y0, y1, v))
-                return 0;
-            for (int k = 0; k < 3; k++)
-                v[k] = (a[k] + b[k] + c[k]) / 3.0;
-            if (!close_at(in, (2 * x0 + x1) / 3, (2 * ya + yb) / 3, y0, y1, v))
-                return 0;
-            for (int k = 0; k < 3; k++)
-                v[k] = (b[k] + c[k] + d[k]) / 3.0;
-            if (!close_at(in, (x0 + 2 * x1) / 3, (ya + 2 * yb) / 3, y0, y1, v))
-                return 0;
-            const double *ends[4][2] = {{a, b}, {c, d}, {a, c}, {b, d}};
-            const double at[4][2] = {{xm, ya}, {xm, yb}, {x0, ym}, {x1, ym}};
-            for (int e = 0; e < 4; e++) {
+            double c[4][3]; /* (x0, ya), (x1, ya), (x0, yb), (x1, yb) */
+            sky_px(in, x0, ya, c[0]);
+            sky_px(in, x1, ya, c[1]);
+            sky_px(in, x0, yb, c[2]);
+            sky_px(in, x1, yb, c[3]);
+            double lo = fmax(ya, y0 + 0.5), hi = fmax(lo, fmin(yb, y1 - 0.5)); /* the rows' pixel centres */
+            double pts[11][2] = {{(2 * x0 + x1) / 3, (2 * ya + yb) / 3}, {(x0 + 2 * x1) / 3, (ya + 2 * yb) / 3}};
+            for (int i = 0; i < 9; i++) {
+                pts[2 + i][0] = x0 + 0.5 * (i % 3) * (x1 - x0);
+                pts[2 + i][1] = lo + 0.5 * (i / 3) * (hi - lo);
+            }
+            for (int p = 0; p < 11; p++) {
+                if (p >= 2 && (p - 2) % 3 != 1 && (pts[p][1] == ya || pts[p][1] == yb))
+                    continue; /* a corner: exact */
+                double u = (pts[p][0] - x0) / (x1 - x0), v = (pts[p][1] - ya) / (yb - ya), val[3];
                 for (int k = 0; k < 3; k++)
-                    v[k] = 0.5 * (ends[e][0][k] + ends[e][1][k]);
-                if (!close_at(in, at[e][0], at[e][1], y0, y1, v))
+                    val[k] = u + v <= 1 ? c[0][k] + u * (c[1][k] - c[0][k]) + v * (c[2][k] - c[0][k])
+                                        : c[3][k] + (1 - u) * (c[2][k] - c[3][k]) + (1 - v) * (c[1][k] - c[3][k]);
+                if (!close_at(in, pts[p][0], pts[p][1], y0, y1, val))
                     return 0;
             }
         }

@@ -125,6 +125,8 @@ static const view views[] = {
     {30, 8, 120, 20, 35, 400, 300, 60},  /* hazy, rolled */
     {3, 2, 40, 2, 0, 400, 300, 60},      /* a low sun, beside it, at the horizon */
     {3, 2, 180, 10, -20, 800, 480, 50},  /* a low sun behind, rolled */
+    {30, 2.5, 180, -3, 0, 96, 72, 50},   /* small, the horizon inside the first band: its cells reach below it */
+    {30, 2.5, 150, 2, 0, 192, 72, 50},   /* the same twice as wide (test_embed's two channels) */
 };
 
 /* Where the plan grows the cells, every pixel is within its bound of the sky (with room for what a few points a cell
