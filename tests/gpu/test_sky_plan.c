@@ -175,7 +175,7 @@ static void test_plan_keeps_small_cells_where_the_sky_bends(void **st)
 }
 
 /* A frame of sky alone takes the display's values at the corners where the plan allows (cu_sky_grid_toned): there
- * every pixel's interpolated display value is within 1.5 times the bound of the curve of its sky (measured 0.36
+ * every pixel's interpolated display value is within 1.5 times the bound of the curve of its sky (measured 0.29
  * levels at most, against the bound's 0.3); and it does so somewhere on the views where the sky is smooth. Cells
  * four times as large everywhere toward the low sun are off by more: the bound can fail. */
 static void test_toned_plan(void **st)
