@@ -160,7 +160,8 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         "how far the direction from the eye to a cloud may turn before its impostor is remade", S(impostor_degrees)),
     /* up to 64 pixels: a coarser grid's interpolation shows in a smooth sky (tests/gpu/test_sky.c measures it) */
     INT("quality", "sky_grid", 1, "16", 0, 64, 0, "pixels", "the sky worked out at the corners of cells this size and "
-        "interpolated (not the sun, the horizon or shadows on the ground, which stay exact); 0: at every pixel",
+        "interpolated (not the sun, the horizon or shadows on the ground, which stay exact), from 8 up grown 2 or 4 "
+        "times (to 64) where the sky bends little; 0: at every pixel",
         S(sky_grid)),
     /* 1..4: beyond a quarter a cloud's edge spans 4 output pixels per texel and the upsampling shows */
     INT("quality", "cloud_downsample", 1, "1", 1, 4, 0, "", "draw the clouds at 1/N of the resolution in each "

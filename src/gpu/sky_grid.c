@@ -111,7 +111,7 @@ static int bands(const plan_in *in, int grid, int least, unsigned char scale[CU_
     for (int b = 0; b < CU_SKY_BANDS; b++) {
         scale[b][0] = scale[b][1] = (unsigned char)least;
         int r0 = b * CU_SKY_BAND, r1 = r0 + CU_SKY_BAND < h ? r0 + CU_SKY_BAND : h;
-        if (r0 >= h || grid <= 0)
+        if (r0 >= h || grid < CU_SKY_PLAN_LEAST)
             continue;
         /* the band's rows of sky alone (0) and near the horizon (1): first and last of each */
         int first[2] = {r1, r1}, last[2] = {r0 - 1, r0 - 1};

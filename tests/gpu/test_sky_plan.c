@@ -212,16 +212,17 @@ static void test_toned_plan(void **st)
     assert_true(coarse > 2 * CU_SKY_GRID_LEVELS);
 }
 
-/* Grids that cannot grow (64 pixels: the largest cell already; 0: no grid), a one-pixel viewport, and a degenerate
- * camera (NaN directions) keep every band at 1; bands past the viewport are 1. */
+/* Grids that cannot grow (64 pixels: the largest cell already; 0: no grid; 33: twice is past 64; 4: too fine to be
+ * worth the plan's cost), a one-pixel viewport, and a degenerate camera (NaN directions) keep every band at 1; bands
+ * past the viewport are 1. */
 static void test_plan_degenerate(void **st)
 {
     (void)st;
     static unsigned char scale[CU_SKY_BANDS][2];
     sky_ctx c;
     make(&c, &views[0]);
-    const int grids[] = {64, 0, 33};
-    for (int g = 0; g < 3; g++) {
+    const int grids[] = {64, 0, 33, 4}; /* 4: finer than CU_SKY_PLAN_LEAST */
+    for (int g = 0; g < 4; g++) {
         cu_sky_grid_plan(c.tables, c.sun, c.m, c.w, c.h, grids[g], no_sun, scale);
         for (int b = 0; b < CU_SKY_BANDS; b++)
             for (int k = 0; k < 2; k++)
