@@ -71,6 +71,7 @@ static void tables_update(cu_pass_sky *p, const cu_gl *gl, const cu_sky *sky)
     gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, CU_SKY_TABLE, 2, 0, GL_RGBA, GL_FLOAT, p->table);
     memcpy(p->tables_of, of, sizeof of);
     p->tables_built = 1;
+    p->tables_made++;
 }
 
 void cu_pass_sky_destroy(cu_pass_sky *p, const cu_gl *gl)
@@ -188,6 +189,7 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
     int toned = shape == CU_SKY_GRID && k == CU_SKY_ALONE ? pass->toned[band][low] : 0;
     if (k == CU_SKY_ALONE && !toned) /* the curve at every pixel */
         k = CU_SKY_OUT;
+    pass->toned_runs += toned > 0;
     if (shape == CU_SKY_GRID) { /* the cells of the box's band (draw's runs keep to one) */
         int scale = toned ? toned : pass->scale[band][low] > 0 ? pass->scale[band][low] : 1; /* 0: no plan yet */
         cell *= scale;
@@ -269,43 +271,44 @@ static void shadow_box(const cu_gpu_scene *ctx, int maps, int w, int h, int box[
 }
 
 /* The grid's cells for this frame (cu_sky_grid_plan), made again only when what they depend on changed: the sky's
- * matrix, the sun, the sky's coefficients, the viewport and quality.sky_grid (the sun's box follows from those). */
+ * matrix, the sun, the tables (the sky's coefficients), the viewport and quality.sky_grid (the sun's box follows from
+ * those); and for a frame of sky alone (toned) the cells that take the curve at their corners, keyed on the same and
+ * the display's exposure and cap, kept apart so that frames with and without clouds in turn (a view panning across
+ * a cloud's edge) remake neither. */
 static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const int sun[4], int toned)
 {
-    double of[48] = {0}, display[4] = {0, 0, 0, cu_out_max(ctx)};
-    float os[3];
-    cu_out_scale(ctx, os);
-    for (int c = 0; c < 3; c++)
-        display[c] = os[c];
+    tables_update(pass, ctx->gl, ctx->sky);
+    double of[CU_SKY_PLAN_KEY + 4] = {0}, display[4] = {0, 0, 0, cu_out_max(ctx)};
     for (int i = 0; i < 16; i++)
         of[i] = ctx->camera.inv_rot[i];
     of[16] = ctx->sun_dir.x;
     of[17] = ctx->sun_dir.y;
     of[18] = ctx->sun_dir.z;
-    memcpy(of + 19, ctx->sky->perez, sizeof ctx->sky->perez);
-    of[34] = ctx->sky->zenith[0];
-    of[35] = ctx->sky->zenith[1];
-    of[36] = ctx->sky->zenith[2];
-    of[37] = ctx->sky->norm[0];
-    of[38] = ctx->sky->norm[1];
-    of[39] = ctx->sky->norm[2];
-    of[40] = w;
-    of[41] = h;
-    of[42] = ctx->scene->sky_grid;
-    of[43] = toned;
-    if (toned)
-        memcpy(of + 44, display, sizeof display);
-    if (pass->plan_made && !memcmp(of, pass->plan_of, sizeof of))
+    of[19] = w;
+    of[20] = h;
+    of[21] = ctx->scene->sky_grid;
+    of[22] = pass->tables_made;
+    if (!pass->plan_made || memcmp(of, pass->plan_of, sizeof pass->plan_of)) {
+        cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun,
+                         pass->scale);
+        memcpy(pass->plan_of, of, sizeof pass->plan_of);
+        pass->plan_made = 1;
+        pass->plans++;
+    }
+    if (!toned)
         return;
-    tables_update(pass, ctx->gl, ctx->sky);
-    cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, pass->scale);
-    if (toned)
-        cu_sky_grid_toned(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, display,
-                          pass->toned);
-    else
-        memset(pass->toned, 0, sizeof pass->toned);
-    memcpy(pass->plan_of, of, sizeof of);
-    pass->plan_made = 1;
+    float os[3];
+    cu_out_scale(ctx, os);
+    for (int c = 0; c < 3; c++)
+        display[c] = os[c];
+    memcpy(of + CU_SKY_PLAN_KEY, display, sizeof display);
+    if (pass->toned_made && !memcmp(of, pass->toned_of, sizeof pass->toned_of))
+        return;
+    cu_sky_grid_toned(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, display,
+                      pass->toned);
+    memcpy(pass->toned_of, of, sizeof pass->toned_of);
+    pass->toned_made = 1;
+    pass->toned_plans++;
 }
 
 static int in_rows(const int box[4], int row)
@@ -341,6 +344,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
     if (maps > 0)
         shadow_box(ctx, maps, w, h, shade);
     int banded = ctx->scene->sky_grid > 0 && split;
+    pass->toned_runs = 0;
     if (banded)
         plan(pass, ctx, w, h, sun, kind == CU_SKY_ALONE);
     gl->Enable(GL_SCISSOR_TEST);

@@ -24,6 +24,7 @@ enum { CU_SKY_HDR, CU_SKY_OUT, CU_SKY_OVER, CU_SKY_ALONE, CU_SKY_KINDS };
  * (rows of the Perez sky alone; the sun's disk then drawn over a pixel at a time); once, for a colour the same at every
  * pixel (the ground where no shadow map reaches, a constant sky with its sun's disk drawn over). */
 enum { CU_SKY_PIXEL, CU_SKY_GRID, CU_SKY_FLAT, CU_SKY_SHAPES };
+#define CU_SKY_PLAN_KEY 23 /* the plan's key: the sky's matrix (16), the sun (3), size (2), grid, tables_made */
 typedef struct cu_pass_sky {
     /* [kind][CU_SKY_BOTH][0][0] made at once, the others when first drawn */
     GLuint prog[CU_SKY_KINDS][CU_SKY_PARTS][CU_GROUND_MAPS + 1][CU_SKY_SHAPES];
@@ -32,12 +33,16 @@ typedef struct cu_pass_sky {
     GLuint tables;              /* RGBA32F CU_SKY_TABLE x 2: the zenith factor (row 0), the sun factor (row 1) */
     double tables_of[21];       /* the Perez coefficients, zenith values and norms they were built from */
     int tables_built;
+    unsigned tables_made;       /* how many times they were built: the plans below key on it */
     float table[2 * 4 * CU_SKY_TABLE]; /* the same tables on the CPU (grid_plan's estimate) */
     unsigned char scale[CU_SKY_BANDS][2]; /* the grid's cells by band of rows (cu_sky_grid_plan) */
     unsigned char toned[CU_SKY_BANDS][2]; /* with the curve at their corners (cu_sky_grid_toned; 0: at every pixel) */
-    double plan_of[48];         /* what they were made for: the sky's matrix, the sun, the tables, size, grid and,
-                                 * for toned, the exposure and the cap (toned made only for CU_SKY_ALONE) */
-    int plan_made;
+    double plan_of[CU_SKY_PLAN_KEY];  /* what scale was made for: the sky's matrix, the sun, the tables, size, grid */
+    double toned_of[CU_SKY_PLAN_KEY + 4]; /* what toned was made for: the same, the exposure and the cap (made only
+                                           * for CU_SKY_ALONE, so a frame with clouds keeps it for the next without) */
+    int plan_made, toned_made;
+    long plans, toned_plans;    /* how many of each were made (a test's window on the cache) */
+    int toned_runs;             /* runs of rows the last draw gave the curve at the corners (CU_SKY_ALONE) */
     int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */
 } cu_pass_sky;
 

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "render_util.h"
+#include "renderer.h"
 #include "scene.h"
 #include "sky.h"
 #include "tonemap.h"
@@ -357,6 +358,62 @@ static void test_sky_grid(void **st)
     free(got);
 }
 
+/* The sky pass's plans (pass_sky.c plan): a frame of sky alone takes the curve at the grid's corners in some runs of
+ * rows (the plan's toned bands, sky_grid.h), a frame drawn the general way (linear output here, as a frame with clouds)
+ * in none; frames of the two kinds in turn, with the camera and the sun unmoved, make neither plan again (they are
+ * kept apart); a moved sun remakes both. Counted by the pass (toned_runs, plans, toned_plans): what the GPU was asked
+ * to draw, not what the CPU plan says it could. The level view away from a sun 30 degrees high: test_sky_plan finds
+ * its bands toned. */
+static void test_sky_plan_kept(void **st)
+{
+    (void)st;
+    tr_ctx c;
+    if (tr_open(&c, &cu_display_egl, GW, GH, 0))
+        fail_msg("%s", c.err);
+    const char *sets[] = {"cloud.density=0", "sun.elevation=30", "sun.azimuth=180", NULL};
+    if (tr_render(&c, "scenes/cumulus.scene", sets))
+        fail_msg("%s", c.err);
+    cu_scene *s = scene_with(sets);
+    cu_sky sky;
+    cu_sky_compute(&sky, s);
+    vec3 away = v3_norm(v3(-sky.sun_dir.x, 0, -sky.sun_dir.z));
+    float view[16], proj[16];
+    mat4 inv;
+    rolled_camera(s, away, 0, 60, GW, GH, view, proj, &inv);
+    unsigned fbo;
+    int w, h;
+    c.be->frame(c.disp, &fbo, &w, &h);
+    const cu_pass_sky *p = &c.r->pass_sky;
+    long plans = 0, toned = 0;
+    cu_error e;
+    for (int i = 0; i < 6; i++) {
+        if (i == 4 && cu_renderer_set_sun(c.r, 30.5, 180, &e)) /* the sun moved: both plans again */
+            fail_msg("%s", e.msg);
+        cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = i % 2, .view = view, .projection = proj};
+        if (cu_render(c.r, &f, &e))
+            fail_msg("%s", e.msg);
+        printf("frame %d (%s): toned runs %d, plans %ld, toned plans %ld\n", i, i % 2 ? "linear" : "sky alone",
+               p->toned_runs, p->plans, p->toned_plans);
+        if (i % 2)
+            assert_int_equal(p->toned_runs, 0);
+        else
+            assert_true(p->toned_runs > 0);
+        if (i == 0) {
+            plans = p->plans;
+            toned = p->toned_plans;
+            assert_true(plans >= 1 && toned >= 1);
+        } else if (i < 4) {
+            assert_int_equal(p->plans, plans);
+            assert_int_equal(p->toned_plans, toned);
+        } else {
+            assert_int_equal(p->plans, plans + 1);
+            assert_int_equal(p->toned_plans, toned + 1);
+        }
+    }
+    cu_scene_free(s);
+    tr_close(&c);
+}
+
 /* A constant sky (sky.model constant): one colour from every direction, the ground's place too, drawn flat (pass_sky.c
  * CU_SKY_FLAT, worked out once) with the sun's disk drawn over it a pixel at a time. Every pixel farther than 0.3
  * degrees from the sun holds sky.color exactly (radiance) or one colour (display); every pixel within 0.2 degrees
@@ -423,6 +480,7 @@ int main(void)
     const struct CMUnitTest tests[] = {cmocka_unit_test(test_sky_is_preetham),
                                        cmocka_unit_test(test_sky_and_ground_in_rows),
                                        cmocka_unit_test(test_sky_grid),
+                                       cmocka_unit_test(test_sky_plan_kept),
                                        cmocka_unit_test(test_constant_sky_and_sun)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
