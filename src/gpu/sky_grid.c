@@ -1,5 +1,7 @@
 /* src/gpu/sky_grid.c: the sky pass's geometry on the CPU (see sky_grid.h). */
 #include "sky_grid.h"
+#include <stdlib.h>
+#include <string.h>
 #include "tonemap.h"
 
 vec3 cu_sky_dir(const float *m, double x, double y)
@@ -66,29 +68,53 @@ static int close_at(const plan_in *in, double x, double y, int y0, int y1, const
     return 1;
 }
 
+/* The corners of a row of cells and of the row above it, each worked out when a cell first needs it: neighbouring
+ * cells share them (a corner serves up to four cells). */
+typedef struct corners {
+    double (*v)[3];     /* 2 x (cols + 1): the row's lower corners, then its upper ones */
+    unsigned char *got; /* the same, 1 once worked out */
+    int most;           /* room for this many columns of corners */
+} corners;
+
+static const double *corner(const plan_in *in, corners *cc, int row, int cols, int i, double x, double y)
+{
+    int k = row * (cols + 1) + i;
+    if (!cc->got[k]) {
+        sky_px(in, x, y, cc->v[k]);
+        cc->got[k] = 1;
+    }
+    return cc->v[k];
+}
+
 /* Whether cells cw x ch, laid from the viewport's corner and clamped to it as sky.vert lays them, interpolate rows
  * [y0, y1) well enough (cu_sky_grid_plan). Each cell's two triangles share the diagonal from its upper left corner to
  * its lower right (sky.vert's strip: lower, upper, lower, ...). Tested: the part of the cell within the rows (a cell
  * may reach past them, its corners below the horizon), at its corners, edges' midpoints and centre, and at the
- * centroids of the cell's triangles. */
-static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
+ * centroids of the cell's triangles. A cell's left edge is its left neighbour's right edge, interpolated alike (along
+ * an edge only its two corners count), so after the first cell of a row it is not tested again. */
+static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1, corners *cc)
 {
-    for (int cy = y0 / ch * ch; cy < y1; cy += ch)
-        for (int cx = 0; cx < in->w; cx += cw) {
+    int cols = (in->w + cw - 1) / cw;
+    if (cols + 1 > cc->most)
+        return 0; /* not reached: bands() makes room for the finest cells */
+    memset(cc->got, 0, (size_t)(cols + 1));
+    for (int cy = y0 / ch * ch; cy < y1; cy += ch) {
+        memset(cc->got + cols + 1, 0, (size_t)(cols + 1));
+        for (int i = 0; i < cols; i++) {
+            int cx = i * cw;
             double x0 = cx, x1 = cx + cw < in->w ? cx + cw : in->w;
             double ya = cy, yb = cy + ch < in->h ? cy + ch : in->h;
-            double c[4][3]; /* (x0, ya), (x1, ya), (x0, yb), (x1, yb) */
-            sky_px(in, x0, ya, c[0]);
-            sky_px(in, x1, ya, c[1]);
-            sky_px(in, x0, yb, c[2]);
-            sky_px(in, x1, yb, c[3]);
+            const double *c[4] = {corner(in, cc, 0, cols, i, x0, ya), corner(in, cc, 0, cols, i + 1, x1, ya),
+                                  corner(in, cc, 1, cols, i, x0, yb), corner(in, cc, 1, cols, i + 1, x1, yb)};
             double lo = fmax(ya, y0 + 0.5), hi = fmax(lo, fmin(yb, y1 - 0.5)); /* the rows' pixel centres */
             double pts[11][2] = {{(2 * x0 + x1) / 3, (2 * ya + yb) / 3}, {(x0 + 2 * x1) / 3, (ya + 2 * yb) / 3}};
-            for (int i = 0; i < 9; i++) {
-                pts[2 + i][0] = x0 + 0.5 * (i % 3) * (x1 - x0);
-                pts[2 + i][1] = lo + 0.5 * (i / 3) * (hi - lo);
+            for (int j = 0; j < 9; j++) {
+                pts[2 + j][0] = x0 + 0.5 * (j % 3) * (x1 - x0);
+                pts[2 + j][1] = lo + 0.5 * (j / 3) * (hi - lo);
             }
             for (int p = 0; p < 11; p++) {
+                if (p >= 2 && (p - 2) % 3 == 0 && i > 0)
+                    continue; /* the left edge: tested as the neighbour's right */
                 if (p >= 2 && (p - 2) % 3 != 1 && (pts[p][1] == ya || pts[p][1] == yb))
                     continue; /* a corner: exact */
                 double u = (pts[p][0] - x0) / (x1 - x0), v = (pts[p][1] - ya) / (yb - ya), val[3];
@@ -99,6 +125,10 @@ static int cells_fit(const plan_in *in, int cw, int ch, int y0, int y1)
                     return 0;
             }
         }
+        /* the row above takes this row's upper corners as its lower ones */
+        memcpy(cc->v, cc->v + cols + 1, sizeof cc->v[0] * (size_t)(cols + 1));
+        memcpy(cc->got, cc->got + cols + 1, (size_t)(cols + 1));
+    }
     return 1;
 }
 
@@ -108,6 +138,13 @@ static int bands(const plan_in *in, int grid, int least, unsigned char scale[CU_
 {
     int w = in->w, h = in->h, cells = 0;
     const float *m = in->m;
+    corners cc = {NULL, NULL, grid > 0 ? (w + grid - 1) / grid + 1 : 0};
+    if (grid >= CU_SKY_PLAN_LEAST) {
+        cc.v = malloc(sizeof cc.v[0] * 2 * (size_t)cc.most);
+        cc.got = malloc(2 * (size_t)cc.most);
+        if (!cc.v || !cc.got)
+            grid = 0; /* out of memory: no band grows (each keeps `least`), as for a grid too fine to plan */
+    }
     for (int b = 0; b < CU_SKY_BANDS; b++) {
         scale[b][0] = scale[b][1] = (unsigned char)least;
         int r0 = b * CU_SKY_BAND, r1 = r0 + CU_SKY_BAND < h ? r0 + CU_SKY_BAND : h;
@@ -129,7 +166,7 @@ static int bands(const plan_in *in, int grid, int least, unsigned char scale[CU_
             int cw = grid, ch = k && grid > 4 ? grid / 4 : grid;
             for (int s = 4; s > least; s /= 2)
                 if (cw * s <= CU_SKY_CELL_MAX && ch * s <= CU_SKY_CELL_MAX &&
-                    cells_fit(in, cw * s, ch * s, first[k], last[k] + 1)) {
+                    cells_fit(in, cw * s, ch * s, first[k], last[k] + 1, &cc)) {
                     scale[b][k] = (unsigned char)s;
                     break;
                 }
@@ -138,6 +175,8 @@ static int bands(const plan_in *in, int grid, int least, unsigned char scale[CU_
                 cells += (w + cw * s - 1) / (cw * s);
         }
     }
+    free(cc.v);
+    free(cc.got);
     return cells;
 }
 
