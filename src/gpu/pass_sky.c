@@ -186,7 +186,7 @@ static int piece(cu_pass_sky *pass, const cu_gpu_scene *ctx, int k, int part, in
               : k != CU_SKY_OVER && (constant || (part == CU_SKY_BELOW && maps == 0)) ? CU_SKY_FLAT
               : cell > 0 && part == CU_SKY_ABOVE && !constant ? CU_SKY_GRID : CU_SKY_PIXEL;
     int band = box[1] / CU_SKY_BAND < CU_SKY_BANDS ? box[1] / CU_SKY_BAND : CU_SKY_BANDS - 1;
-    int toned = shape == CU_SKY_GRID && k == CU_SKY_ALONE ? pass->toned[band][low] : 0;
+    int toned = shape == CU_SKY_GRID && k == CU_SKY_ALONE && pass->toned_now ? pass->toned[band][low] : 0;
     if (k == CU_SKY_ALONE && !toned) /* the curve at every pixel */
         k = CU_SKY_OUT;
     pass->toned_runs += toned > 0;
@@ -288,20 +288,23 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
     of[20] = h;
     of[21] = ctx->scene->sky_grid;
     of[22] = pass->tables_made;
-    if (!pass->plan_made || memcmp(of, pass->plan_of, sizeof pass->plan_of)) {
+    int moved = !pass->plan_made || memcmp(of, pass->plan_of, sizeof pass->plan_of);
+    if (moved) {
         cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun,
                          pass->scale);
         memcpy(pass->plan_of, of, sizeof pass->plan_of);
         pass->plan_made = 1;
         pass->plans++;
     }
-    if (!toned)
+    pass->toned_now = 0;
+    if (!toned || moved)
         return;
     float os[3];
     cu_out_scale(ctx, os);
     for (int c = 0; c < 3; c++)
         display[c] = os[c];
     memcpy(of + CU_SKY_PLAN_KEY, display, sizeof display);
+    pass->toned_now = 1;
     if (pass->toned_made && !memcmp(of, pass->toned_of, sizeof pass->toned_of))
         return;
     cu_sky_grid_toned(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun, display,
@@ -345,6 +348,7 @@ static int draw(cu_pass_sky *pass, const cu_gpu_scene *ctx, int kind, int factor
         shadow_box(ctx, maps, w, h, shade);
     int banded = ctx->scene->sky_grid > 0 && split;
     pass->toned_runs = 0;
+    pass->toned_now = 0;
     if (banded)
         plan(pass, ctx, w, h, sun, kind == CU_SKY_ALONE);
     gl->Enable(GL_SCISSOR_TEST);

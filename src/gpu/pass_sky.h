@@ -41,6 +41,7 @@ typedef struct cu_pass_sky {
     double toned_of[CU_SKY_PLAN_KEY + 4]; /* what toned was made for: the same, the exposure and the cap (made only
                                            * for CU_SKY_ALONE, so a frame with clouds keeps it for the next without) */
     int plan_made, toned_made;
+    int toned_now;              /* this frame takes toned (the view and the sun as in the frame before) */
     long plans, toned_plans;    /* how many of each were made (a test's window on the cache) */
     int toned_runs;             /* runs of rows the last draw gave the curve at the corners (CU_SKY_ALONE) */
     int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */
