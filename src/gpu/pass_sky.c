@@ -272,8 +272,11 @@ static void shadow_box(const cu_gpu_scene *ctx, int maps, int w, int h, int box[
 
 /* The grid's cells for this frame (cu_sky_grid_plan), made again only when what they depend on changed: the sky's
  * matrix, the sun, the tables (the sky's coefficients), the viewport and quality.sky_grid (the sun's box follows from
- * those); and for a frame of sky alone (toned) the cells that take the curve at their corners, keyed on the same and
- * the display's exposure and cap, kept apart so that frames with and without clouds in turn (a view panning across
+ * those). And for a frame of sky alone (toned) the cells that take the curve at their corners, keyed on the same and
+ * the display's exposure and cap, made only when that key is the one the last frame of sky alone asked for: a view,
+ * a sun or an exposure that changes every frame takes the curve at every pixel instead of a plan every frame (on
+ * llvmpipe one costs more CPU than it saves in the shader, on a GPU the curve costs little); a still one gets it from
+ * its second frame on. The two are kept apart, so that frames with and without clouds in turn (a view panning across
  * a cloud's edge) remake neither. */
 static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const int sun[4], int toned)
 {
@@ -288,8 +291,7 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
     of[20] = h;
     of[21] = ctx->scene->sky_grid;
     of[22] = pass->tables_made;
-    int moved = !pass->plan_made || memcmp(of, pass->plan_of, sizeof pass->plan_of);
-    if (moved) {
+    if (!pass->plan_made || memcmp(of, pass->plan_of, sizeof pass->plan_of)) {
         cu_sky_grid_plan(pass->table, ctx->sun_dir, ctx->camera.inv_rot, w, h, ctx->scene->sky_grid, sun,
                          pass->scale);
         memcpy(pass->plan_of, of, sizeof pass->plan_of);
@@ -297,13 +299,18 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
         pass->plans++;
     }
     pass->toned_now = 0;
-    if (!toned || moved)
+    if (!toned)
         return;
     float os[3];
     cu_out_scale(ctx, os);
     for (int c = 0; c < 3; c++)
         display[c] = os[c];
     memcpy(of + CU_SKY_PLAN_KEY, display, sizeof display);
+    int again = pass->toned_asked && !memcmp(of, pass->toned_ask, sizeof pass->toned_ask);
+    memcpy(pass->toned_ask, of, sizeof pass->toned_ask);
+    pass->toned_asked = 1;
+    if (!again)
+        return;
     pass->toned_now = 1;
     if (pass->toned_made && !memcmp(of, pass->toned_of, sizeof pass->toned_of))
         return;

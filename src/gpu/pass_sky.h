@@ -40,8 +40,9 @@ typedef struct cu_pass_sky {
     double plan_of[CU_SKY_PLAN_KEY];  /* what scale was made for: the sky's matrix, the sun, the tables, size, grid */
     double toned_of[CU_SKY_PLAN_KEY + 4]; /* what toned was made for: the same, the exposure and the cap (made only
                                            * for CU_SKY_ALONE, so a frame with clouds keeps it for the next without) */
-    int plan_made, toned_made;
-    int toned_now;              /* this frame takes toned (the view and the sun as in the frame before) */
+    double toned_ask[CU_SKY_PLAN_KEY + 4]; /* what the last frame of sky alone asked toned for (pass_sky.c plan) */
+    int plan_made, toned_made, toned_asked;
+    int toned_now;              /* this frame takes toned: it asks what the last frame of sky alone asked */
     long plans, toned_plans;    /* how many of each were made (a test's window on the cache) */
     int toned_runs;             /* runs of rows the last draw gave the curve at the corners (CU_SKY_ALONE) */
     int refined;                /* within cu_pass_sky_draw_over: an edge refinement image is bound (pass_refine.h) */

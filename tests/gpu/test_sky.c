@@ -361,13 +361,13 @@ static void test_sky_grid(void **st)
 }
 
 /* The sky pass's plans (pass_sky.c plan): a frame of sky alone takes the curve at the grid's corners in some runs of
- * rows (the plan's toned bands, sky_grid.h) once the view and the sun are as in the frame before, and none in a frame
- * whose view or sun moved (the toned plan is not made for a frame that cannot reuse it); a frame drawn the general way
- * (linear output here, as a frame with clouds) takes none. Frames of the two kinds in turn, with the camera and the sun
- * unmoved, make neither plan again (they are kept apart); a moved sun remakes the radiance plan at once and the toned
- * one in the frame after. Counted by the pass (toned_runs, plans, toned_plans): what the GPU was asked to draw, not
- * what the CPU plan says it could. The level view away from a sun 30 degrees high: test_sky_plan finds its bands
- * toned. */
+ * rows (the plan's toned bands, sky_grid.h) once the view, the sun and the exposure are those the last frame of sky
+ * alone had, and none in a frame where one of them changed (the toned plan is not made for a frame that cannot reuse
+ * it); a frame drawn the general way (linear output here, as a frame with clouds) takes none. Frames of the two kinds
+ * in turn, with the camera and the sun unmoved, make neither plan again (they are kept apart); a moved sun remakes the
+ * radiance plan at once and the toned one in the frame after, a changed exposure the toned one in the frame after.
+ * Counted by the pass (toned_runs, plans, toned_plans): what the GPU was asked to draw, not what the CPU plan says it
+ * could. The level view away from a sun 30 degrees high: test_sky_plan finds its bands toned. */
 static void test_sky_plan_kept(void **st)
 {
     (void)st;
@@ -388,17 +388,23 @@ static void test_sky_plan_kept(void **st)
     int w, h;
     c.be->frame(c.disp, &fbo, &w, &h);
     const cu_pass_sky *p = &c.r->pass_sky;
-    /* by frame: linear output; the sun moved before it; toned runs expected; plans and toned plans made in it */
-    static const struct { int linear, sun, toned, plans, toned_plans; } frames[] = {
+    /* by frame: linear output; the sun moved (1) or the exposure changed (2) before it; toned runs expected; plans
+     * and toned plans made in it */
+    static const struct { int linear, change, toned, plans, toned_plans; } frames[] = {
         {0, 0, 0, 1, 0}, /* a new view */
         {1, 0, 0, 0, 0}, {0, 0, 1, 0, 1}, {1, 0, 0, 0, 0}, {0, 0, 1, 0, 0}, {1, 0, 0, 0, 0},
         {0, 1, 0, 1, 0}, /* the sun moved */
+        {0, 0, 1, 0, 1},
+        {0, 2, 0, 0, 0}, /* the exposure changed (a host's own, every frame: the renderer's scene, as set_scene
+                          * would leave it) */
         {0, 0, 1, 0, 1}};
     long plans = p->plans, toned = p->toned_plans;
     cu_error e;
     for (size_t i = 0; i < sizeof frames / sizeof frames[0]; i++) {
-        if (frames[i].sun && cu_renderer_set_sun(c.r, 30.5, 180, &e))
+        if (frames[i].change == 1 && cu_renderer_set_sun(c.r, 30.5, 180, &e))
             fail_msg("%s", e.msg);
+        if (frames[i].change == 2)
+            c.r->scene.exposure *= 1.5;
         cu_frame f = {.fbo = fbo, .width = w, .height = h, .linear = frames[i].linear, .view = view,
                       .projection = proj};
         if (cu_render(c.r, &f, &e))
