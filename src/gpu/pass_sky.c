@@ -298,8 +298,7 @@ static void plan(cu_pass_sky *pass, const cu_gpu_scene *ctx, int w, int h, const
         pass->plan_made = 1;
         pass->plans++;
     }
-    pass->toned_now = 0;
-    if (!toned)
+    if (!toned) /* toned_now stays 0 (draw clears it) */
         return;
     float os[3];
     cu_out_scale(ctx, os);

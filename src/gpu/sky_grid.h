@@ -24,7 +24,8 @@ enum { CU_SKY_BOTH, CU_SKY_ABOVE, CU_SKY_BELOW, CU_SKY_PARTS };
 #define CU_SKY_GRID_REL 0.01
 #define CU_SKY_GRID_LEVELS 0.3 /* of 255: the display's values interpolated (cu_sky_grid_toned) */
 /* Finer grids keep their cells, the curve at every pixel: the plan's cost grows as 1 / N^2 (on this machine's CPU at
- * 800x480: 0.2 ms at N = 16, 0.33 at 8, 0.7 at 4, 10.7 at 1), paid whenever the camera or the sun moves. */
+ * 800x480, before cells_fit shared corners: 0.2 ms at N = 16, 0.33 at 8, 0.7 at 4, 10.7 at 1; 0.145 at 16 after),
+ * paid whenever the camera or the sun moves. */
 #define CU_SKY_PLAN_LEAST 8
 
 /* The view direction (unit) at the viewport's NDC (x, y) through the sky's matrix m (column-major, clip ->
@@ -37,11 +38,10 @@ int cu_sky_rows(const float *m, double y0, double y1);
  * cells over quality.sky_grid's `grid` pixels (the horizon's rows: grid wide, a quarter as high), in its rows of sky
  * alone (scale[b][0]) and in its rows near the horizon (scale[b][1]): the largest, at most CU_SKY_CELL_MAX pixels a
  * side, whose cells (laid as sky.vert lays them, two triangles each) interpolate the sky of the tables (cu_sky_tables:
- * zenith part, then sun part) within CU_SKY_GRID_REL of it in every channel, at each cell's centre, its triangles'
- * centroids and its edges' midpoints within the band's rows of that kind; points in sun (x0, y0, x1, y1, half-open
- * pixels: drawn a pixel at a time) are not tested. Bands past the viewport, and every band of a grid finer than
- * CU_SKY_PLAN_LEAST, get 1. Returns how many cells the bands'
- * rows of sky take (a measure for tests and logs). */
+ * zenith part, then sun part) within CU_SKY_GRID_REL of it in every channel, at a 3 x 3 lattice over the part of each
+ * cell within the band's rows of that kind and at the centroids of its triangles; points in sun (x0, y0, x1, y1,
+ * half-open pixels: drawn a pixel at a time) are not tested. Bands past the viewport, and every band of a grid finer
+ * than CU_SKY_PLAN_LEAST, get 1. Returns how many cells the bands' rows of sky take (a measure for tests and logs). */
 int cu_sky_grid_plan(const float *tables, vec3 sun_dir, const float *m, int w, int h, int grid, const int sun[4],
                      unsigned char scale[CU_SKY_BANDS][2]);
 /* The same for cells that carry the display's values (a frame of sky alone: sky.vert with SKY_CORNER_TONE, the tone
