@@ -9,6 +9,7 @@
 #include "scene.h"
 #include "sky.h"
 #include "slabmodel.h"
+#include "sunmap.h"
 #include "vecmath.h"
 
 struct cu_collector;
@@ -28,10 +29,13 @@ enum { CU_UNIT_NOISE = 0, CU_UNIT_PHASE = 1, CU_UNIT_SUN_MAP = 2, CU_UNIT_SUN_TA
        texture on the diffusion grid's unit, which holds a 3D one; a unit's targets are bound apart */ };
 
 /* What the sun pass publishes (pass_sun.c): the map on CU_UNIT_SUN_MAP (peel: the interval layers; front: the
- * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. */
+ * depth map; osm, fom: the tiles), peel's optical depths on CU_UNIT_SUN_TAU, and the intervals the map holds. peel
+ * also keeps the texels (x0, y0, x1, y1, half-open, within a tile) each interval's tile was drawn over, so that the
+ * later bands of a map made a band a frame draw the same (cu_sun_tile_boxes). */
 typedef struct cu_sun_maps {
     GLuint map, tau;
     int intervals;
+    int tile_box[CU_SUN_TILES_MAX][4];
 } cu_sun_maps;
 
 /* What the slab pass publishes (pass_slab.c): the fitted tables, the slab maps from the sun [0] and the zenith [1],

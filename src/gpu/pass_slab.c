@@ -193,7 +193,7 @@ void cu_pass_slab_update(const cu_pass_slab *p, const cu_gpu_scene *ctx, int whi
     cu_sun_band_scissor(gl, rows);
     gl->ClearBufferfv(GL_COLOR, 0, zero);
     gl->ClearBufferfv(GL_COLOR, 1, zero);
-    cu_sun_map_tiles(ctx, right, up, 1, rows);
+    cu_sun_map_tiles(ctx, right, up, 1, rows, NULL);
     gl->BindVertexArray(0);
     gl->BindFramebuffer(GL_FRAMEBUFFER, 0);
     for (int i = 0; i < 2 && mipmaps; i++) {

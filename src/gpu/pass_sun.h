@@ -28,9 +28,10 @@ int cu_pass_sun_map_create(const cu_pass_sun *p, const cu_gl *gl, int size, cu_t
 void cu_sun_band_scissor(const cu_gl *gl, const int rows[2]);
 /* The bound full-screen program over `tiles` tiles side by side of a map seen along right x up (sun_size texels a
  * tile, over ctx->sun_R), in their rows [rows[0], rows[1]) (NULL: all), only in the box of texels whose rays can meet
- * ctx->cloud (cu_sun_map_texels): the caller has set the others to what a ray meeting nothing gives. Leaves the
- * band's scissor (cu_sun_band_scissor). */
-void cu_sun_map_tiles(const cu_gpu_scene *ctx, vec3 right, vec3 up, int tiles, const int rows[2]);
+ * ctx->cloud (cu_sun_map_texels), or with boxes, tile j in boxes[j] (cu_sun_tile_boxes): the caller has set the
+ * others to what a ray meeting nothing gives. Leaves the band's scissor (cu_sun_band_scissor). */
+void cu_sun_map_tiles(const cu_gpu_scene *ctx, vec3 right, vec3 up, int tiles, const int rows[2],
+                      const int (*boxes)[4]);
 /* Renders ctx->cloud's map for ctx's sun direction and updates out: its rows [rows[0], rows[1]) (a band of them,
  * frame_maps.c), or all (rows NULL). Bands are drawn in order from row 0 with one sun: a band after the first keeps
  * the interval count (peel's tiles) that out holds from it. Leaves the scissor test on those rows (every tile), or

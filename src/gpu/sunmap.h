@@ -4,8 +4,16 @@
 #define CU_SUNMAP_H
 #include "density.h"
 
-/* The most intervals of the ellipsoid union along any of grid x grid sun rays over the cloud's bounds. */
-int cu_sun_max_intervals(const cu_cloud *cl, vec3 sun_dir, int grid);
+#define CU_SUN_TILES_MAX 4 /* light.sun_intervals' largest value: the most tiles of a peeled opacity map */
+
+/* The most intervals of the ellipsoid union along the ray through any texel's centre of a size x size opacity map
+ * (returned, uncapped), and for each j < tiles the texels (x0, y0, x1, y1, half-open) where the (j + 1)-th interval's
+ * tile is drawn: j = 0 cu_sun_map_texels' box (every ray that meets the cloud), j > 0 the box of the texels whose
+ * rays cross more than j intervals, a texel wider each way (empty: none does). Chords that overlap by less than
+ * 1e-4 R count apart, so that fp32's union on the GPU finds no more intervals than these boxes hold. A ray a texel
+ * of the first box, once per map made (a band a frame: at its first band); on the cumulus 1 % of the texels cross a
+ * second interval, in a box a third of the first, which the tile of that interval was drawn over in full. */
+int cu_sun_tile_boxes(const cu_cloud *cl, vec3 sun_dir, int size, int tiles, int boxes[][4]);
 /* Orthonormal basis of the sun plane (right, up), stable for every sun direction including the zenith. */
 void cu_sun_basis(vec3 sun_dir, vec3 *right, vec3 *up);
 /* Half-size R of the sun maps: the plane sits at 2R along the sun direction, depths span 4R. */

@@ -5,7 +5,7 @@
  * not, and no map holds a NaN. The trade-study alternatives (light.shadow = osm: regular-slice opacity shadow maps,
  * fom: Fourier opacity maps) are read back and evaluated at the same probes with their documented accuracy. And the
  * box the peeled map is drawn in holds every texel whose ray meets the cloud, and the slab maps' coverage is the
- * union's, from the sun and from the zenith. */
+ * union's, from the sun and from the zenith; and each interval's tile is drawn over every texel whose ray crosses it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -545,6 +545,27 @@ static void test_bookkeeping(void **st)
     free_map(&m);
 }
 
+/* A cloud of n random ellipsoids: centres within place[] (x, y, z) about the origin, radii least[] + up to span[]. */
+static void random_cloud(cu_cloud *cl, int n, const int place[3], const int least[3], const int span[3])
+{
+    memset(cl, 0, sizeof *cl);
+    cl->n = n;
+    for (int i = 0; i < n; i++) {
+        cl->c[i] = v3(rand() % place[0] - place[0] / 2, rand() % place[1] - place[1] / 2,
+                      rand() % place[2] - place[2] / 2);
+        cl->r[i] = v3(least[0] + rand() % span[0], least[1] + rand() % span[1], least[2] + rand() % span[2]);
+        cl->bound_radius = fmax(cl->bound_radius, v3_len(cl->c[i]) + fmax(cl->r[i].x, fmax(cl->r[i].y, cl->r[i].z)));
+    }
+}
+
+/* A random sun direction; trial 0 the zenith, trial 1 the horizon. */
+static vec3 random_sun(int trial)
+{
+    double el = trial == 0 ? 90 : trial == 1 ? 0 : rand() % 91, az = rand() % 360;
+    return v3(cos(el * CU_PI / 180) * sin(az * CU_PI / 180), sin(el * CU_PI / 180),
+              cos(el * CU_PI / 180) * cos(az * CU_PI / 180));
+}
+
 /* cu_sun_map_texels, the box the peeled map is drawn in (pass_sun.c): over random clouds of 1 to 8 ellipsoids and sun
  * directions (the zenith and the horizon among them), every texel whose centre's ray meets the union (the CPU's
  * cu_union_intervals) lies inside it, and it reaches at most 3 texels past the texels that do (two of margin and the
@@ -556,16 +577,9 @@ static void test_map_texels(void **st)
     int empty_texels = 0, texels = 0;
     for (int trial = 0; trial < 60; trial++) {
         cu_cloud cl;
-        memset(&cl, 0, sizeof cl);
-        cl.n = 1 + trial % 8;
-        for (int i = 0; i < cl.n; i++) {
-            cl.c[i] = v3(rand() % 800 - 400, rand() % 200 - 100, rand() % 600 - 300);
-            cl.r[i] = v3(20 + rand() % 300, 10 + rand() % 150, 20 + rand() % 250);
-            cl.bound_radius = fmax(cl.bound_radius, v3_len(cl.c[i]) + fmax(cl.r[i].x, fmax(cl.r[i].y, cl.r[i].z)));
-        }
-        double el = trial == 0 ? 90 : trial == 1 ? 0 : rand() % 91, az = rand() % 360;
-        vec3 sun = v3(cos(el * CU_PI / 180) * sin(az * CU_PI / 180), sin(el * CU_PI / 180),
-                      cos(el * CU_PI / 180) * cos(az * CU_PI / 180)), right, up;
+        static const int place[3] = {800, 200, 600}, least[3] = {20, 10, 20}, span[3] = {300, 150, 250};
+        random_cloud(&cl, 1 + trial % 8, place, least, span);
+        vec3 sun = random_sun(trial), right, up;
         cu_sun_basis(sun, &right, &up);
         int size = 16 << (trial % 4), box[4], hit[4] = {size, size, -1, -1};
         double R = cu_sun_radius(&cl), a[1], b[1];
@@ -595,6 +609,64 @@ static void test_map_texels(void **st)
     /* measured: 207141 of 326400 texels outside the box (what the map no longer draws) */
     printf("cu_sun_map_texels: %d of %d texels outside the box\n", empty_texels, texels);
     assert_true(empty_texels > texels / 10);
+}
+
+/* cu_sun_tile_boxes, where each interval's tile of the peeled map is drawn (pass_sun.c): over random clouds of 2 to 9
+ * ellipsoids, apart and heaped, and sun directions (the zenith and the horizon among them), tile 0's box is
+ * cu_sun_map_texels' (exact), the count is at least the most intervals any texel's ray crosses (cu_union_intervals,
+ * as the shader's union), a tile past the count has no box, and every texel whose ray crosses more than j intervals
+ * lies in tile j's box (the 64 x 64 rays the count was taken from before missed a second interval 18 m of air apart
+ * from the first on one of these clouds, and boxes drawn from them missed texels on another). The later boxes must
+ * also be smaller than the first, what they are for (measured: 24.5 % of its area; the count exact on all 80). */
+static void test_tile_boxes(void **st)
+{
+    (void)st;
+    srand(15);
+    long first_area = 0, later_area = 0, multi = 0, exact = 0;
+    for (int trial = 0; trial < 80; trial++) {
+        cu_cloud cl;
+        int spread = trial % 3 == 0 ? 1500 : 700; /* apart, or a heap like a cumulus */
+        const int place[3] = {spread, 400, spread}, least[3] = {40, 30, 40}, span[3] = {300, 200, 250};
+        random_cloud(&cl, 2 + trial % 8, place, least, span);
+        vec3 sun = random_sun(trial), right, up;
+        cu_sun_basis(sun, &right, &up);
+        int size = 16 << (trial % 4), tiles = 1 + trial % CU_SUN_TILES_MAX, boxes[CU_SUN_TILES_MAX][4], most = 0;
+        double R = cu_sun_radius(&cl), a[1], b[1];
+        int J = cu_sun_tile_boxes(&cl, sun, size, tiles, boxes), first[4];
+        cu_sun_map_texels(&cl, right, up, R, size, first);
+        assert_memory_equal(boxes[0], first, sizeof first);
+        for (int y = 0; y < size; y++)
+            for (int x = 0; x < size; x++) {
+                double u = ((x + 0.5) / size * 2 - 1) * R, v = ((y + 0.5) / size * 2 - 1) * R;
+                vec3 o = v3_add(v3_add(v3_scale(right, u), v3_scale(up, v)), v3_scale(sun, 2 * R));
+                int m = cu_union_intervals(&cl, o, v3_scale(sun, -1), a, b, 0);
+                most = m > most ? m : most;
+                multi += m > 1;
+                for (int j = 1; j < m && j < tiles; j++)
+                    if (x < boxes[j][0] || x >= boxes[j][2] || y < boxes[j][1] || y >= boxes[j][3])
+                        fail_msg("trial %d (%d ellipsoids, %d texels): texel (%d, %d) crosses %d intervals outside "
+                                 "tile %d's box %d %d %d %d", trial, cl.n, size, x, y, m, j, boxes[j][0],
+                                 boxes[j][1], boxes[j][2], boxes[j][3]);
+            }
+        if (J < most)
+            fail_msg("trial %d: counted %d intervals, a texel's ray crosses %d", trial, J, most);
+        exact += J == most;
+        for (int j = 1; j < tiles; j++) {
+            const int *bx = boxes[j];
+            if (j >= J) {
+                assert_true(bx[2] <= bx[0] || bx[3] <= bx[1]);
+                continue;
+            }
+            for (int k = 0; k < 2; k++)
+                assert_true(bx[k] >= first[k] && bx[k + 2] <= first[k + 2] && bx[k + 2] > bx[k]);
+            later_area += (long)(bx[2] - bx[0]) * (bx[3] - bx[1]);
+            first_area += (long)(first[2] - first[0]) * (first[3] - first[1]);
+        }
+    }
+    printf("cu_sun_tile_boxes: later tiles drawn over %.1f %% of the first tile's box; %ld texels cross two or more "
+           "intervals; the count exact in %ld of 80 clouds\n", 100.0 * later_area / first_area, multi, exact);
+    assert_true(multi > 1000);
+    assert_true(later_area < first_area / 2);
 }
 
 /* cu_sun_band_rows, the rows a band of a map made again over several frames draws (frame_maps.c): for every map size,
@@ -693,6 +765,7 @@ int main(void)
         cmocka_unit_test(test_alternatives),
         cmocka_unit_test(test_alternative_renders),
         cmocka_unit_test(test_map_texels),
+        cmocka_unit_test(test_tile_boxes),
         cmocka_unit_test(test_band_rows),
         cmocka_unit_test(test_slab_map_coverage),
     };
