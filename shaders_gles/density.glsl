@@ -97,8 +97,11 @@ float extinction(vec3 p, float t)
 {
     float d = -1e30;
     for (int k = 0; k < n_hits; k++) {
-        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3)
+        if (t >= hit_t0[k] - 1e-3 && t <= hit_t1[k] + 1e-3) {
             d = max(d, radial_distance(p, hit_idx[k]));
+            if (d >= u_h)
+                break; // the core: the union's distance can only grow, and the core's extinction is u_ke whatever it is
+        }
     }
     return extinction_at_distance(p, d);
 }
