@@ -34,6 +34,9 @@ static const char bench_help[] =
     "                         has them, else the wall clock with glFinish between passes)\n"
     "  --time-step S          advance the scene time S seconds each frame (wind, life cycles, boil, time_utc)\n"
     "  --sun-step DEG         the same with DEG per frame, in (0, 360]\n"
+    "  --sun-blocks N         with the two above: the sun turned for N frames, then held for N, in turn, and the\n"
+    "                         mean frame time of each kind and their ratio printed (what turning the sun costs,\n"
+    "                         measured in one run; held frames count once the picture has settled)\n"
     "  --camera MODE          static (the scene's [camera], default); orbit: a new pose every frame, passed as\n"
     "                         view and projection matrices, circling the vertical through look_at; both: every\n"
     "                         orbit pose twice, just after the move and again unmoved, and the ratio of the two\n"
@@ -80,7 +83,7 @@ static int parse_count(const char *opt, const char *v, int min, int *out)
 }
 
 enum { OPT_FRAMES = 0x200, OPT_WARMUP, OPT_CSV, OPT_SUN_STEP, OPT_SUN_EVERY, OPT_CAMERA, OPT_ORBIT_STEP,
-       OPT_TIME_STEP, OPT_PASSES };
+       OPT_TIME_STEP, OPT_PASSES, OPT_SUN_BLOCKS };
 
 int cmd_bench(int argc, char **argv)
 {
@@ -95,10 +98,11 @@ int cmd_bench(int argc, char **argv)
         {"orbit-step", required_argument, NULL, OPT_ORBIT_STEP},
         {"time-step", required_argument, NULL, OPT_TIME_STEP},
         {"passes", no_argument, NULL, OPT_PASSES},
+        {"sun-blocks", required_argument, NULL, OPT_SUN_BLOCKS},
         {NULL, 0, NULL, 0},
     };
     cli_opts o = {0};
-    int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC, passes = 0;
+    int frames = 30, warmup = 3, sun_every_frame = 0, camera = CAM_STATIC, passes = 0, sun_blocks = 0;
     double orbit_step = 1.0;
     double sun_step = 0.01; /* degrees of azimuth per frame with --sun-every-frame: a knob turned slowly */
     double time_step = 0;   /* s of scene time per frame */
@@ -133,6 +137,10 @@ int cmd_bench(int argc, char **argv)
             break;
         case OPT_SUN_EVERY: sun_every_frame = 1; break; /* measure the sun pass too, as when a knob turns */
         case OPT_PASSES: passes = 1; break;
+        case OPT_SUN_BLOCKS:
+            if (parse_count("--sun-blocks", optarg, 1, &sun_blocks))
+                return 2;
+            break;
         case OPT_TIME_STEP:
             time_step = strtod(optarg, &end);
             if (end == optarg || *end || !(time_step > 0) || time_step > 1e6) {
@@ -173,6 +181,10 @@ int cmd_bench(int argc, char **argv)
                         "[--set k=v]... [--csv FILE] [--sun-every-frame] [--sun-step DEG] [--time-step S]\n");
         return 2;
     }
+    if (sun_blocks && (!sun_every_frame || camera != CAM_STATIC)) {
+        fprintf(stderr, "cumulo bench: --sun-blocks needs --sun-every-frame or --sun-step, and a static camera\n");
+        return 2;
+    }
     cli_session s;
     int rc = cli_session_open(&s, &o);
     if (rc) {
@@ -202,10 +214,14 @@ int cmd_bench(int argc, char **argv)
     double el, az, t_scene = cu_renderer_get_time(s.r);
     cu_renderer_get_sun(s.r, &el, &az);
     float view[16], proj[16];
+    double turned = 0, held_sum = 0, turning_sum = 0; /* --sun-blocks: degrees turned so far, the two kinds' sums */
+    int held_n = 0, turning_n = 0;
     for (int i = 0; i < warmup + frames; i++) {
-        if (sun_every_frame) {
+        int held = sun_blocks && i / sun_blocks % 2 == 1, settled = cu_renderer_settled(s.r);
+        if (sun_every_frame && !held) {
             cu_error e;
-            cu_renderer_set_sun(s.r, el, az + sun_step * i, &e);
+            cu_renderer_set_sun(s.r, el, az + turned, &e);
+            turned += sun_step;
         }
         if (time_step > 0) {
             cu_error e;
@@ -221,8 +237,13 @@ int cmd_bench(int argc, char **argv)
             double t0 = now_ms();
             if (cli_session_render_view(&s, moving ? view : NULL, moving ? proj : NULL))
                 rc = 1;
+            double dt = now_ms() - t0;
             if (i >= warmup)
-                (pass ? t_still : t)[i - warmup] = now_ms() - t0;
+                (pass ? t_still : t)[i - warmup] = dt;
+            if (i >= warmup && sun_blocks && !held)
+                turning_sum += dt, turning_n++;
+            else if (i >= warmup && sun_blocks && settled) /* a held frame with nothing left to catch up */
+                held_sum += dt, held_n++;
             double ms[CU_PASS_COUNT];
             if (passes && !pass && i >= warmup && !cu_renderer_pass_times(s.r, ms))
                 for (int k = 0; k < CU_PASS_COUNT; k++)
@@ -267,6 +288,16 @@ int cmd_bench(int argc, char **argv)
     if (cu_renderer_budget(s.r, &bd, &bg, &bms) == 0) /* where the frame budget ended */
         printf("[%s] %s: budget: clouds at 1/%d resolution, temporal grid %d, last median %.3f ms (timer's)\n", base,
                opts, bd, bg, bms);
+    if (sun_blocks && (!turning_n || !held_n)) {
+        fprintf(stderr, "cumulo bench: --sun-blocks %d: %s; more frames or longer blocks\n", sun_blocks,
+                turning_n ? "the picture never settled in a held block" : "no turning frame was measured");
+        rc = 1;
+    } else if (sun_blocks) {
+        printf("[%s] %s:sun-blocks=%d: turning: mean %.3f ms (%d frames) held: mean %.3f ms (%d settled frames)\n",
+               base, opts, sun_blocks, turning_sum / turning_n, turning_n, held_sum / held_n, held_n);
+        printf("turning/held mean frame time: %.3f (blocks of %d frames, interleaved)\n",
+               (turning_sum / turning_n) / (held_sum / held_n), sun_blocks);
+    }
     if (camera == CAM_BOTH) {
         printf("[%s] %s:unmoved: FPS: %.1f FrameTime: %.3f ms p95: %.3f ms frames: %d\n", base, opts,
                1000.0 / still_med, still_med, still_p95, frames);

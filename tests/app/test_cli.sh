@@ -40,6 +40,18 @@ for n in 1 2; do
   else t_fail "bench --passes, downsample $n" "frame $frame ms: $line"; fi
 done
 t_expect "bench bad camera" 2 "--camera expects static, orbit or both" -- $C bench scenes/cumulus.scene --camera spin
+# --sun-blocks: the sun turned for 6 frames and held for 6, in turn; every turning frame counts, and of the held ones
+# only those drawn once the picture had settled (the maps made again over 4 frames finish in the first held ones).
+out=$($C bench scenes/cumulus.scene --frames 24 --warmup 0 --size 48x32 --sun-step 0.6 --sun-blocks 6 2>&1)
+held=$(printf '%s\n' "$out" | sed -n 's/.*sun-step=0.6:sun-blocks=6: turning: mean [0-9.]* ms (12 frames) held: mean [0-9.]* ms (\([0-9]*\) settled frames)$/\1/p')
+if [ -n "$held" ] && [ "$held" -gt 0 ] && [ "$held" -lt 12 ] &&
+   printf '%s\n' "$out" | grep -q '^turning/held mean frame time: [0-9.]* (blocks of 6 frames, interleaved)$'; then
+  t_ok "bench --sun-blocks output"
+else t_fail "bench --sun-blocks output" "$out"; fi
+t_expect "bench sun blocks without a sun" 2 "--sun-blocks needs --sun-every-frame or --sun-step" -- $C bench scenes/cumulus.scene --sun-blocks 4
+t_expect "bench bad sun blocks" 2 "--sun-blocks expects a count" -- $C bench scenes/cumulus.scene --sun-step 1 --sun-blocks 0
+# a held frame right after a turning one: the maps still being made again, so no held frame counts
+t_expect "bench sun blocks that never settle" 1 "the picture never settled in a held block" -- $C bench scenes/cumulus.scene --frames 2 --warmup 2 --size 16x12 --sun-step 0.6 --sun-blocks 1
 
 printf '[camera]\nposition = 0 0 -10\nlook_at = 0 0 0\n[sun]\n[cloud]\n[ellipsoid]\ncenter = 0 0 0\nradii = 1 nan 1\n' > "$T/bad.scene"
 t_expect "bad scene value" 1 "$T/bad.scene:8:9: 'radii' is NaN" -- $C render "$T/bad.scene" -o "$T/x.png"
@@ -65,7 +77,7 @@ done
 for opt in --output --size --backend --set --data-dir --verbose; do
   case "$($C render --help)" in *"$opt"*) t_ok "render --help describes $opt" ;; *) t_fail "render --help describes $opt" "missing" ;; esac
 done
-for opt in --frames --warmup --csv --sun-every-frame --sun-step --camera --orbit-step; do
+for opt in --frames --warmup --csv --sun-every-frame --sun-step --sun-blocks --camera --orbit-step; do
   case "$($C bench --help)" in *"$opt"*) t_ok "bench --help describes $opt" ;; *) t_fail "bench --help describes $opt" "missing" ;; esac
 done
 v=$($C --version); rc=$?

@@ -7,6 +7,10 @@
 # are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every half
 # degree, within ms.frame_work a frame). The row "ms.mode = octaves" is medium with the octaves' multiple scattering
 # instead of diffusion's (the presets before 2026-12-06's sweep of a turning sun).
+# The columns "in one run" turn the sun for 12 frames and hold it for 12, in turn, over 96 frames (cumulo bench
+# --sun-blocks 12): the ratio of the turning frames' mean to the held ones' (once the picture has settled), measured
+# in one process, so that the machine's drift and a process's own speed cancel; the other ratios divide the means of
+# two runs.
 # Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads
 # and caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
 # closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as
@@ -39,13 +43,16 @@ time_of() { # CONFIG CASE; the empty view looks away from the cloud (it is behin
     empty) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --set "camera.look_at=0 150 -2400" ;;
     sun) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-every-frame ;;
     fast) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-step 0.6 ;;
+    sunp) $C bench $S --size "$SIZE" --frames 96 --warmup 5 $(sets "$1") --sun-every-frame --sun-blocks 12 ;;
+    fastp) $C bench $S --size "$SIZE" --frames 96 --warmup 5 $(sets "$1") --sun-step 0.6 --sun-blocks 12 ;;
     *) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") ;;
-  esac | sed -n 's/.*FrameTime: .* mean: \([0-9.]*\) ms.*/\1/p' | head -1
+  esac | sed -n -e 's/.*FrameTime: .* mean: \([0-9.]*\) ms.*/\1/p' -e 's/^turning\/held mean frame time: \([0-9.]*\).*/\1/p' |
+    tail -1
 }
 r=1
 while [ "$r" -le "$ROUNDS" ]; do
   for c in $CONFIGS; do
-    for k in cloud empty sun fast; do
+    for k in cloud empty sun fast sunp fastp; do
       echo "$c $k $(time_of "$c" "$k")" >>"$T/all"
     done
   done
@@ -54,19 +61,20 @@ done
 med() { awk -v c="$1" -v k="$2" '$1 == c && $2 == k { print $3 }' "$T/all" | sort -n |
         awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 echo "| configuration | cloud view (ms) | no cloud on screen (ms) | ratio | sun 0.01° a frame (ms) | ratio" \
-  "| sun 0.6° a frame (ms) | ratio |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+  "| in one run | sun 0.6° a frame (ms) | ratio | in one run |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for c in $CONFIGS; do
-  a=$(med "$c" cloud); b=$(med "$c" empty); s=$(med "$c" sun); f=$(med "$c" fast)
+  a=$(med "$c" cloud); b=$(med "$c" empty); s=$(med "$c" sun); f=$(med "$c" fast); sp=$(med "$c" sunp)
+  fp=$(med "$c" fastp)
   label=$c
   [ "$c" = uniform ] && label="uniform march 16/4, baked noise"
   [ "$c" = octaves ] && label="medium, ms.mode = octaves"
   [ "$c" = whole ] && label="medium, sun_map_frames = 1"
   [ "$c" = exact ] && label="medium, sky_grid = 0"
   [ "$c" = low8 ] && label="low, sun_map_frames = 8"
-  printf '| %s | %s | %s | %.2f | %s | %.2f | %s | %.2f |\n' "$label" "$a" "$b" \
-    "$(echo "$b $a" | awk '{print $1/$2}')" "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$f" \
-    "$(echo "$f $a" | awk '{print $1/$2}')"
+  printf '| %s | %s | %s | %.2f | %s | %.2f | %.2f | %s | %.2f | %.2f |\n' "$label" "$a" "$b" \
+    "$(echo "$b $a" | awk '{print $1/$2}')" "$s" "$(echo "$s $a" | awk '{print $1/$2}')" "$sp" "$f" \
+    "$(echo "$f $a" | awk '{print $1/$2}')" "$fp"
 done
 echo
 echo "($ROUNDS rounds, $SIZE, LP_NUM_THREADS=${LP_NUM_THREADS:-unset}, load $(cut -d' ' -f1-3 /proc/loadavg))"
