@@ -7,10 +7,10 @@
 # are made again a band a frame over quality.sun_map_frames frames, and a diffusion grid is solved again every half
 # degree, within ms.frame_work a frame). The row "ms.mode = octaves" is medium with the octaves' multiple scattering
 # instead of diffusion's (the presets before 2026-12-06's sweep of a turning sun).
-# The columns "in one run" turn the sun for 12 frames and hold it for 12, in turn, over 96 frames (cumulo bench
-# --sun-blocks 12): the ratio of the turning frames' mean to the held ones' (once the picture has settled), measured
-# in one process, so that the machine's drift and a process's own speed cancel; the other ratios divide the means of
-# two runs.
+# The columns "in one run" turn the sun for 24 frames and hold it for 24, in turn, over 144 frames (cumulo bench
+# --sun-blocks 24; a held block must outlast the 2K frames maps made in K bands take to settle): the ratio of the
+# turning frames' mean to the held ones' (once the picture has settled), measured in one process, so that the
+# machine's drift and a process's own speed cancel; the other ratios divide the means of two runs.
 # Each case: the mean of 20 frames after 5 warm-up ones (a cheap frame's first few run slower: llvmpipe's threads
 # and caches warming; the mean, not the median, so that work done every few frames, a band of the maps or the energy
 # closure once a degree, counts at its average). The row "sun_map_frames = 1" is the whole maps every frame, as
@@ -43,8 +43,8 @@ time_of() { # CONFIG CASE; the empty view looks away from the cloud (it is behin
     empty) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --set "camera.look_at=0 150 -2400" ;;
     sun) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-every-frame ;;
     fast) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") --sun-step 0.6 ;;
-    sunp) $C bench $S --size "$SIZE" --frames 96 --warmup 5 $(sets "$1") --sun-every-frame --sun-blocks 12 ;;
-    fastp) $C bench $S --size "$SIZE" --frames 96 --warmup 5 $(sets "$1") --sun-step 0.6 --sun-blocks 12 ;;
+    sunp) $C bench $S --size "$SIZE" --frames 144 --warmup 5 $(sets "$1") --sun-every-frame --sun-blocks 24 ;;
+    fastp) $C bench $S --size "$SIZE" --frames 144 --warmup 5 $(sets "$1") --sun-step 0.6 --sun-blocks 24 ;;
     *) $C bench $S --size "$SIZE" --frames 20 --warmup 5 $(sets "$1") ;;
   esac | sed -n -e 's/.*FrameTime: .* mean: \([0-9.]*\) ms.*/\1/p' -e 's/^turning\/held mean frame time: \([0-9.]*\).*/\1/p' |
     tail -1
