@@ -236,6 +236,13 @@ float core_entry(vec3 ro, vec3 dir, int k0, int k1)
 }
 #endif
 
+// The march ends where the transmittance to the eye falls below e^-TAU_CUT (6e-6) for the light that reaches
+// farthest (the delta-M medium's, or diffusion's scaled one: msd_reach): nothing behind can add more than that
+// fraction of its source, and a ray through a thick cloud spends most of its samples behind it (Kol's segments grow
+// away from the entry; the exit ramp and the intervals behind come last). Not in the energy pass, which wants the
+// whole column.
+#define TAU_CUT 12.0
+
 #if METHOD_UNIFORM && !ENERGY_PASS
 #include "march_uniform.glsl"
 #endif
@@ -430,6 +437,10 @@ void main()
             taup += DM_SCALE * dtau;
             ke_prev = ke;
             S_prev = S;
+#if !ENERGY_PASS
+            if (msd_reach(taup) > TAU_CUT)
+                break;
+#endif
         }
 #if MS_MODE == 2 || MS_MODE == 3
         // The interval's multiple scattering, evaluated once at its entry (Kol 3.4.4). C is already the radiance
@@ -452,6 +463,10 @@ void main()
         float w_sky = 0.5;
 #endif
         amb += exp(-tau0) * (1.0 - exp(-(tau - tau0))) * mix(u_ground_rad, u_sky_rad, w_sky);
+#if !ENERGY_PASS
+        if (msd_reach(taup) > TAU_CUT)
+            break;
+#endif
     }
 #endif
 #if PHASE_PEAK && !ENERGY_PASS

@@ -24,7 +24,8 @@ float sun_march(vec3 p)
 // UNIFORM_STEPS steps of equal length from the ray's first entry into the cloud to its last exit (or the host's
 // surface), jittered per pixel, each step's source held constant and its attenuation integrated exactly (Hillaire
 // 2016): single scattering through the scene's phase function, octaves for multiple scattering (MS_MODE 1), the same
-// isotropic sky and ground light as Kol's intervals. Ends when the delta-M transmittance is below e^-12.
+// isotropic sky and ground light as Kol's intervals. Ends when the delta-M transmittance is below e^-TAU_CUT, as
+// Kol's march does.
 void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, inout vec3 L, inout vec3 amb)
 {
     float a = hit_t0[0], b = hit_t1[0];
@@ -54,7 +55,7 @@ void march_uniform(vec3 ro, vec3 dir, float t_end, vec3 ph0, inout float tau, in
         amb += exp(-tau) * (1.0 - exp(-dtau)) * J;
         tau += dtau;
         taup += DM_SCALE * dtau;
-        if (taup > 12.0)
+        if (taup > TAU_CUT)
             break;
     }
 }

@@ -45,6 +45,14 @@ vec3 msd_interval(float taup, float dt, vec3 S0, vec3 S1)
     float x = u_msd_dm.x;
     return exp(-x * taup) * segment_source(x * dt, S0, S1) / (x * DM_SCALE);
 }
+
+// The optical depth the farthest-reaching light toward the eye has crossed at chopped depth taup: the scaled
+// medium's, which attenuates the diffuse light less than the chopped one does (x = 1 - f_d < 1). The march's end
+// (TAU_CUT) is judged on it.
+float msd_reach(float taup)
+{
+    return u_msd_dm.x * taup;
+}
 #else
 vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
 {
@@ -53,5 +61,10 @@ vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
 
 void msd_source(vec3 p, float ts)
 {
+}
+
+float msd_reach(float taup)
+{
+    return taup;
 }
 #endif
