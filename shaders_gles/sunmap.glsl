@@ -9,13 +9,17 @@
 //   SHADOW_METHOD 3 (fom): Fourier opacity maps (sun_fom.frag): tau(z) reconstructed from FOM_COEFFS Fourier terms
 //      of k_e over the same per-texel range, clamped to [0, tau of the whole ray].
 // SHADOW_METHOD is the cu_shadow_method (0 peel, 1 front, 2 osm, 3 fom); without it SHADOW_PEEL picks peel or front.
-// Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER (and OSM_SLICES or FOM_COEFFS).
+// Needs density.glsl (PI) and SUN_INTERVALS, SUN_FILTER, SUN_PLANAR (light.sun_planar, below; and OSM_SLICES or
+// FOM_COEFFS).
 #ifndef SHADOW_METHOD
 #if SHADOW_PEEL
 #define SHADOW_METHOD 0
 #else
 #define SHADOW_METHOD 1
 #endif
+#endif
+#ifndef SUN_PLANAR
+#define SUN_PLANAR 0
 #endif
 #ifndef FOM_FEJER
 #define FOM_FEJER 0
@@ -132,24 +136,83 @@ float tau_in_texel(ivec2 tc, float z)
 }
 #endif
 
+#if SHADOW_METHOD != 1 && SUN_PLANAR
+// Where texel t's ray first enters the ellipsoids (m from the sun plane; above 1e29 where it misses): tile 0's x in
+// every method's layout.
+float texel_entry(ivec2 t)
+{
+#if SHADOW_METHOD == 0
+    return texelFetch(u_sun_layers, t, 0).x;
+#else
+    return texelFetch(u_sun_map, t, 0).x;
+#endif
+}
+
+// A texel's ray stands for every sample in its footprint, but where the lit surface is slanted to the sun, a sample
+// off the texel's centre enters the cloud earlier or later than that ray: by its offset times the tangent of the
+// sun's angle to the surface's normal, up to 1.4 texel widths at a sun 20 degrees above a flat top. Read at the
+// sample's own depth, the texel's tau then comes from a point that much deeper or shallower in the lit skin, where
+// tau grows by a few per metre: single scattering off a wide layer under a low sun came out a quarter (bilinear) to
+// a half (nearest) of the path tracer's at 128 texels. So a texel is read at the sample's depth below its own ray's
+// entry: the sample's entry interpolated from the texels about it (exact where the surface is a plane across them),
+// minus the texel's. Where one of them misses, or two neighbours' entries part by more than PLANAR_SLOPE texel
+// widths (the surface within 7 degrees of the sun's direction, or another lobe's face), the surface is no plane
+// there and the sample's own depth is kept. Compiled in where the scene's maps are coarse against the lit skin
+// (light.sun_planar; renderer.c): two or four more texel reads a lookup, 5 % of the cumulus's cloud pass.
+#define PLANAR_SLOPE 8.0
+// Whether neighbours' entries e_a and e_b may lie on one plane with e_k (a texel apart; above 1e29: a miss).
+bool planar(float ek, float ea, float eb)
+{
+    float most = PLANAR_SLOPE * 2.0 * u_sun_R / float(u_sun_size);
+    return max(ek, max(ea, eb)) < 1e29 && abs(ea - ek) <= most && abs(eb - ek) <= most;
+}
+#endif
+
 float sun_optical_depth(vec3 p, float ke)
 {
     vec2 uv = vec2(dot(p, u_sun_right), dot(p, u_sun_up)) / u_sun_R * 0.5 + 0.5;
     float z = 2.0 * u_sun_R - dot(p, u_sun_dir);
 #if SHADOW_METHOD != 1
+    ivec2 hi = ivec2(u_sun_size - 1);
+#if SUN_FILTER
+    // Bilinear over the four texels' own estimates (a deep-opacity-map lookup, not a filter of depths), each read as
+    // far below its entry as the sample is below its own, the four entries' bilinear mean.
     vec2 f = uv * float(u_sun_size) - 0.5;
     ivec2 i0 = ivec2(floor(f));
-    int hi = u_sun_size - 1;
-#if SUN_FILTER
-    // Bilinear over the four texels' own estimates (a deep-opacity-map lookup, not a filter of depths).
     vec2 w = f - vec2(i0);
-    float t00 = tau_in_texel(clamp(i0, ivec2(0), ivec2(hi)), z);
-    float t10 = tau_in_texel(clamp(i0 + ivec2(1, 0), ivec2(0), ivec2(hi)), z);
-    float t01 = tau_in_texel(clamp(i0 + ivec2(0, 1), ivec2(0), ivec2(hi)), z);
-    float t11 = tau_in_texel(clamp(i0 + ivec2(1, 1), ivec2(0), ivec2(hi)), z);
+    ivec2 c00 = clamp(i0, ivec2(0), hi), c10 = clamp(i0 + ivec2(1, 0), ivec2(0), hi);
+    ivec2 c01 = clamp(i0 + ivec2(0, 1), ivec2(0), hi), c11 = clamp(i0 + ivec2(1, 1), ivec2(0), hi);
+    vec4 zt = vec4(z);
+#if SUN_PLANAR
+    {
+        vec4 e = vec4(texel_entry(c00), texel_entry(c10), texel_entry(c01), texel_entry(c11));
+        float ep = mix(mix(e.x, e.y, w.x), mix(e.z, e.w, w.x), w.y);
+        if (planar(e.x, e.y, e.z) && planar(e.w, e.y, e.z))
+            zt -= vec4(ep) - e;
+    }
+#endif
+    float t00 = tau_in_texel(c00, zt.x);
+    float t10 = tau_in_texel(c10, zt.y);
+    float t01 = tau_in_texel(c01, zt.z);
+    float t11 = tau_in_texel(c11, zt.w);
     return u_sun_tau_scale * mix(mix(t00, t10, w.x), mix(t01, t11, w.x), w.y);
 #else
-    return u_sun_tau_scale * tau_in_texel(clamp(ivec2(floor(uv * float(u_sun_size))), ivec2(0), ivec2(hi)), z);
+    // The texel the sample lies in, and the sample's entry from it and its neighbours toward the sample in x and y.
+    vec2 f = uv * float(u_sun_size);
+    ivec2 tc = clamp(ivec2(floor(f)), ivec2(0), hi);
+    float shift = 0.0;
+#if SUN_PLANAR
+    {
+        vec2 d = f - vec2(tc) - 0.5; // the sample's offset from the texel's centre, in texels
+        ivec2 toward = ivec2(d.x >= 0.0 ? 1 : -1, d.y >= 0.0 ? 1 : -1);
+        float ek = texel_entry(tc);
+        float ex = texel_entry(clamp(tc + ivec2(toward.x, 0), ivec2(0), hi));
+        float ey = texel_entry(clamp(tc + ivec2(0, toward.y), ivec2(0), hi));
+        if (planar(ek, ex, ey))
+            shift = abs(d.x) * (ex - ek) + abs(d.y) * (ey - ek);
+    }
+#endif
+    return u_sun_tau_scale * tau_in_texel(tc, z - shift);
 #endif
 #else
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0))))

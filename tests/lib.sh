@@ -20,6 +20,12 @@ t_wait_line() {
     sleep 0.1; _w=$((_w + 1))
   done
 }
+# t_pfm_mean FILE [N]: the mean of the green channel of a little-endian PFM's last N pixels (default 64: 8x8);
+# nothing when it holds fewer
+t_pfm_mean() {
+  tail -c $((12 * ${2:-64})) "$1" | od -An -f -w12 -v |
+    awk -v want="${2:-64}" '{ s += $2; n++ } END { if (n == want) printf "%.9g", s / n }'
+}
 t_summary() {
   echo "[  PASSED  ] $T_PASS test(s)."
   [ "$T_SKIP" -eq 0 ] || echo "[  SKIPPED ] $T_SKIP test(s)."

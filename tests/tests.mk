@@ -49,7 +49,8 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 $(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift msd_frames \
   edge_refine,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
-CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh
+CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh \
+  tests/gpu/test_sun_planar.sh
 # Where on screen a cloud can be (camera.c), against points of its bounds from random views: no GL.
 $(eval $(call test_program,test_camera_rect,tests/gpu/test_camera_rect.c $(LIB),,$(LIB_LIBS)))
 # Where the sky's grid may use larger cells (sky_grid.c), against the interpolation at every pixel: no GL.

@@ -131,6 +131,7 @@ struct cu_scene {
     int sun_intervals;        /* most in-cloud intervals per sun ray the opacity map stores (layers / 2) */
     int sun_samples;          /* trapezoid segments per interval in the opacity pass (multiple of 4) */
     int sun_filter;           /* 0 nearest, 1 bilinear lookup of the opacity map */
+    int sun_planar;           /* 0 off, 1 on, 2 auto: the opacity map read below each texel's entry (sunmap.glsl) */
     int osm_slices;           /* shadow = osm: opacity slices per sun ray (multiple of 4, 4..64) */
     int fom_coefficients;     /* shadow = fom: Fourier terms N (a_0..a_N-1, b_1..b_N-1) */
     /* [ms] */

@@ -10,6 +10,7 @@ static const char *const ms_names[] = {"none", "octaves", "slab", "collector", "
 static const char *const sky_names[] = {"preetham", "constant", NULL};
 static const char *const shadow_names[] = {"peel", "front", "osm", "fom", NULL};
 static const char *const filter_names[] = {"nearest", "bilinear", NULL};
+static const char *const planar_names[] = {"off", "on", "auto", NULL};
 static const char *const bool_names[] = {"off", "on", NULL};
 static const char *const integration_names[] = {"exponential", "kol", NULL};
 static const char *const method_names[] = {"kol", "uniform", NULL}; /* in cu_method order (scene.h) */
@@ -211,6 +212,12 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     INT("light", "sun_samples", 1, "32", 4, 64, 4, "", "trapezoids per interval in the opacity pass", S(sun_samples)),
     ENUM("light", "sun_filter", filter_names, "bilinear", "lookup of the opacity map: nearest or bilinear",
          S(sun_filter)),
+    ENUM("light", "sun_planar", planar_names, "auto",
+         "opacity map read as far below each texel's entry as the sample is below its own (where the lit surface is "
+         "slanted to the sun, a texel's ray enters earlier or later than the sample's): on, off, or auto: on where a "
+         "cloud's map texel is wider than an eighth of its lit skin (the boundary, or a mean free path) at the "
+         "smallest map it may get (a field's: 16 texels)",
+         S(sun_planar)),
     INT("light", "osm_slices", 1, "16", 4, 64, 4, "", "shadow = osm: opacity slices along the sun", S(osm_slices)),
     INT("light", "fom_coefficients", 1, "8", 1, 16, 0, "", "shadow = fom: Fourier terms", S(fom_coefficients)),
     ENUM("ms", "mode", ms_names, "slab",

@@ -155,6 +155,31 @@ typedef struct shader_defs {
     char hull[1800], fs[1800], linear[1800];
 } shader_defs;
 
+/* light.sun_planar = auto: whether some cloud's opacity map has texels wider than an eighth of its lit skin (the
+ * depth over which the sun's optical depth grows its first unit: the fuzzy boundary, or a mean free path where that
+ * is longer) at the smallest map it may get (in a field 16 texels, frame.c). There a texel's ray enters the cloud up
+ * to 4 widths off a sample's own wherever the sun is 15 degrees above the lit surface, and the sample read at its
+ * own depth along that ray lands deep in or short of the skin (sunmap.glsl). The default cumulus alone at 128 texels
+ * is 5.5 m against 62 / 8 = 7.75 m: off (the planar read moves 52 of its 76800 pixels by more than 1 %, at most 3 %;
+ * it would cost 5 % of its cloud pass). A 6 km layer (47 m) or any field: on. */
+static int sun_planar_wanted(const cu_renderer *r)
+{
+    const cu_scene *s = &r->scene;
+    if (s->sun_planar != 2)
+        return s->sun_planar;
+    int smallest = r->clouds.n > 1 && s->sun_map_size > 16 ? 16 : s->sun_map_size;
+    double worst = 0.0; /* the largest texel over an eighth of its cloud's skin */
+    for (int i = 0; i < r->clouds.n; i++) {
+        const cu_cloud *cl = &r->clouds.slot[i].cloud;
+        double skin = fmax(cl->h, cl->ke > 0.0 ? 1.0 / cl->ke : 0.0);
+        if (skin > 0.0)
+            worst = fmax(worst, 2.0 * cu_sun_radius(cl) / smallest / (skin / 8.0));
+    }
+    cu_gpu_log(&r->ctx, CU_LOG_DEBUG, "light.sun_planar = auto: %s (the coarsest map texel %.2f of an eighth of its "
+               "cloud's lit skin)", worst > 1.0 ? "on" : "off", worst);
+    return worst > 1.0;
+}
+
 /* far = 1: the far level of detail of a field's clouds, small on screen: one segment fewer (at least 2) and two noise
  * octaves of five (at least 1; the others stand in as their mean, density.glsl). On a field seen from the ground
  * where every cloud takes it, the octaves change the picture by 0.7 % (relative RMSE), the segment by 2.1 %; half
@@ -174,7 +199,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n#define EXT_SHADOW %d\n"
              "#define GROUND_SHADOW %d\n#define METHOD_UNIFORM %d\n#define UNIFORM_STEPS %d\n"
              "#define UNIFORM_SUN_STEPS %d\n#define NOISE_BAKED %d\n#define BOUNDARY_KNOTS %d\n#define RAMP_KNOTS %d\n"
-             "#define TEMPORAL %d\n",
+             "#define TEMPORAL %d\n#define SUN_PLANAR %d\n",
              c->num_ell, far && s->segments > 2 ? s->segments - 1 : s->segments,
              s->max_intervals, s->noise ? 1 : 0, far ? (s->noise_octaves > 2 ? 2 : 1) : s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
@@ -182,7 +207,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
              r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
              s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps, s->noise && s->noise_baked,
-             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1);
+             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar_wanted(r));
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");

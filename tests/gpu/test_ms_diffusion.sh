@@ -49,11 +49,6 @@ radii = ${3:-3000 100 3000}
 noise = off
 SCENE
 }
-# mean of a PFM's green channel, $2 pixels (default 64: 8x8)
-mean() {
-  tail -c $((12 * ${2:-64})) "$1" | od -An -f -w12 -v |
-    awk -v want="${2:-64}" '{ s += $2; n++ } END { if (n == want) printf "%.9g", s / n }'
-}
 # The delta-Eddington radiance the model predicts for a plane-parallel slab of optical depth $1 (irradiance 100, HG g
 # 0.853, conservative; the sun at mu0 = sin 60 deg, the eye at mu = 1500 / |(1500, 600)|, cos of the scattering angle
 # -0.618): the scaled medium (f = g^2, g' = g / (1 + g), depth (1 - f) tau) solved in closed form with Marshak's
@@ -80,7 +75,7 @@ for s in "thin 100 5" "thick 400 62"; do
   $C render "$T/$1.scene" -o "$T/$1_diffusion.pfm" --set quality.preset=high --set ms.mode=diffusion -v \
     >/dev/null 2>"$T/$1_log" || { cat "$T/$1_log" >&2; t_fail "$1: render" "failed"; continue; }
   $C render "$T/$1.scene" -o "$T/$1_octaves.pfm" --set quality.preset=medium --set ms.mode=octaves >/dev/null 2>&1
-  pt=$(mean "$T/$1_pt.pfm"); di=$(mean "$T/$1_diffusion.pfm"); oc=$(mean "$T/$1_octaves.pfm")
+  pt=$(t_pfm_mean "$T/$1_pt.pfm"); di=$(t_pfm_mean "$T/$1_diffusion.pfm"); oc=$(t_pfm_mean "$T/$1_octaves.pfm")
   if grep -q "ms.mode = diffusion: .* sweeps" "$T/$1_log"; then t_ok "$1 slab: the diffusion grid is solved"
   else t_fail "$1 slab: the diffusion grid is solved" "no solve in the debug log"; fi
   if [ "$1" = thin ]; then
@@ -107,7 +102,7 @@ scene 800 62 "3000 100 3000" "8 8" "0 -1500 -600" > "$T/dense.scene"
 if $PT "$T/dense.scene" -o "$T/dense_pt.pfm" --spp 2048 -q 2>"$T/err" &&
    $C render "$T/dense.scene" -o "$T/dense_diffusion.pfm" --set quality.preset=high --set ms.mode=diffusion \
      --set ms.grid=96 >/dev/null 2>"$T/err"; then
-  pt=$(mean "$T/dense_pt.pfm"); di=$(mean "$T/dense_diffusion.pfm")
+  pt=$(t_pfm_mean "$T/dense_pt.pfm"); di=$(t_pfm_mean "$T/dense_diffusion.pfm")
   if awk -v p="$pt" -v d="$di" 'BEGIN { e = d / p - 1; exit !(p > 0 && d == d && e < 0.15 && e > -0.15) }'; then
     t_ok "dense layer from below, ms.grid = 96: diffusion $di within 15 % of the path tracer's $pt"
   else t_fail "dense layer from below, ms.grid = 96: diffusion within 15 % of the path tracer" \
@@ -125,7 +120,7 @@ azimuth = $az" > "$T/sphere$az.scene"
     { cat "$T/err" >&2; t_fail "sphere, sun at azimuth $az: path tracer" "failed"; continue; }
   $C render "$T/sphere$az.scene" -o "$T/sphere${az}_diffusion.pfm" --set quality.preset=high --set ms.mode=diffusion \
     >/dev/null 2>"$T/err" || { cat "$T/err" >&2; t_fail "sphere, sun at azimuth $az: render" "failed"; continue; }
-  pt=$(mean "$T/sphere${az}_pt.pfm" 576); di=$(mean "$T/sphere${az}_diffusion.pfm" 576)
+  pt=$(t_pfm_mean "$T/sphere${az}_pt.pfm" 576); di=$(t_pfm_mean "$T/sphere${az}_diffusion.pfm" 576)
   if awk -v p="$pt" -v d="$di" 'BEGIN { e = d / p - 1; exit !(p > 0 && d == d && e < 0.08 && e > -0.08) }'; then
     t_ok "sphere, sun at azimuth $az: diffusion $di within 8 % of the path tracer's $pt"
   else t_fail "sphere, sun at azimuth $az: diffusion within 8 % of the path tracer" "diffusion '$di', path tracer '$pt'"

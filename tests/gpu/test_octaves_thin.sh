@@ -32,14 +32,12 @@ radii = 40000 10 40000
 [quality]
 noise = off
 SCENE
-# mean of an 8x8 PFM's green channel
-mean() { tail -c 768 "$1" | od -An -f -w12 -v | awk '{ s += $2; n++ } END { if (n == 64) printf "%.9g", s / n }'; }
 share() { # density -> R
   for m in none octaves; do
     $C render "$T/slab.scene" -o "$T/$m$1.pfm" --set cloud.density="$1" --set ms.mode=$m >/dev/null 2>"$T/err" ||
       { cat "$T/err" >&2; return 1; }
   done
-  awk -v n="$(mean "$T/none$1.pfm")" -v o="$(mean "$T/octaves$1.pfm")" \
+  awk -v n="$(t_pfm_mean "$T/none$1.pfm")" -v o="$(t_pfm_mean "$T/octaves$1.pfm")" \
     'BEGIN { if (n > 0 && o == o) printf "%.6g", (o - n) / n; else print "bad" }'
 }
 r1=$(share 0.5); r2=$(share 5); r3=$(share 500)
