@@ -157,8 +157,9 @@ float texel_entry(ivec2 t)
 // entry: the sample's entry interpolated from the texels about it (exact where the surface is a plane across them),
 // minus the texel's. Where one of them misses, or two neighbours' entries part by more than PLANAR_SLOPE texel
 // widths (the surface within 7 degrees of the sun's direction, or another lobe's face), the surface is no plane
-// there and the sample's own depth is kept. Compiled in where the scene's maps are coarse against the lit skin
-// (light.sun_planar; renderer.c): two or four more texel reads a lookup, 5 % of the cumulus's cloud pass.
+// there and the sample's own depth is kept. Compiled in where a cloud's map is coarse against its lit skin and fine
+// against its lobes (light.sun_planar; renderer.c): two or four more texel reads a lookup, 5 % of the cumulus's cloud
+// pass, and on small round lobes a few texels wide the plane through the neighbours is worse than none.
 #define PLANAR_SLOPE 8.0
 // Whether neighbours' entries e_a and e_b may lie on one plane with e_k (a texel apart; above 1e29: a miss).
 bool planar(float ek, float ea, float eb)

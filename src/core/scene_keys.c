@@ -215,8 +215,9 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
     ENUM("light", "sun_planar", planar_names, "auto",
          "opacity map read as far below each texel's entry as the sample is below its own (where the lit surface is "
          "slanted to the sun, a texel's ray enters earlier or later than the sample's): on, off, or auto: on where a "
-         "cloud's map texel is wider than an eighth of its lit skin (the boundary, or a mean free path) at the "
-         "smallest map it may get (a field's: 16 texels)",
+         "cloud's map texel, at the smallest map it may get (a field's: 16 texels), is wider than an eighth of its "
+         "lit skin (the boundary, or a mean free path) and finer than an eighth of its lobes (the smallest middle "
+         "semi-axis), where the surface is a plane across the texels read",
          S(sun_planar)),
     INT("light", "osm_slices", 1, "16", 4, 64, 4, "", "shadow = osm: opacity slices along the sun", S(osm_slices)),
     INT("light", "fom_coefficients", 1, "8", 1, 16, 0, "", "shadow = fom: Fourier terms", S(fom_coefficients)),

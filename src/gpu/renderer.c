@@ -155,29 +155,41 @@ typedef struct shader_defs {
     char hull[1800], fs[1800], linear[1800];
 } shader_defs;
 
-/* light.sun_planar = auto: whether some cloud's opacity map has texels wider than an eighth of its lit skin (the
- * depth over which the sun's optical depth grows its first unit: the fuzzy boundary, or a mean free path where that
- * is longer) at the smallest map it may get (in a field 16 texels, frame.c). There a texel's ray enters the cloud up
- * to 4 widths off a sample's own wherever the sun is 15 degrees above the lit surface, and the sample read at its
- * own depth along that ray lands deep in or short of the skin (sunmap.glsl). The default cumulus alone at 128 texels
- * is 5.5 m against 62 / 8 = 7.75 m: off (the planar read moves 52 of its 76800 pixels by more than 1 %, at most 3 %;
- * it would cost 5 % of its cloud pass). A 6 km layer (47 m) or any field: on. */
+/* light.sun_planar = auto: whether to read the opacity map below each texel's entry (sunmap.glsl), by two measures of
+ * a cloud's map texel W at the smallest map it may get (in a field 16 texels, frame.c). It is needed where W is wide
+ * against the lit skin L (the depth over which the sun's optical depth grows its first unit: the fuzzy boundary, or
+ * a mean free path where that is longer): a texel's ray enters up to W tan(theta) / 2 off a sample's own, theta the
+ * sun's angle to the surface's normal. And it is right only where the surface is a plane across the texels it reads,
+ * W small against the lobes' curvature (an ellipsoid's middle semi-axis, the smallest of the cloud's). So: on where
+ * some cloud has L / 8 < W < rho / 8. Measured on single scattering against the same renderer with 1024 texels: a
+ * 6 km layer, the view from below (1.2 L / 8; its lobes 170-300 m) and glory's flat layer gain (test_sun_planar.sh;
+ * README); the default cumulus at 128 texels (W = 5.5 m, L / 8 = 7.75 m) changes by less than its own noise, and at
+ * 16, 32 and 64 texels, where W passes a tenth of its 80-200 m lobes, the plane through the neighbours' entries is
+ * worse than none (relative RMSE 0.30 -> 0.42, 0.10 -> 0.13, 0.035 -> 0.042). A field of such cumuli stays off. */
 static int sun_planar_wanted(const cu_renderer *r)
 {
     const cu_scene *s = &r->scene;
     if (s->sun_planar != 2)
         return s->sun_planar;
     int smallest = r->clouds.n > 1 && s->sun_map_size > 16 ? 16 : s->sun_map_size;
-    double worst = 0.0; /* the largest texel over an eighth of its cloud's skin */
     for (int i = 0; i < r->clouds.n; i++) {
         const cu_cloud *cl = &r->clouds.slot[i].cloud;
-        double skin = fmax(cl->h, cl->ke > 0.0 ? 1.0 / cl->ke : 0.0);
-        if (skin > 0.0)
-            worst = fmax(worst, 2.0 * cu_sun_radius(cl) / smallest / (skin / 8.0));
+        double skin = fmax(cl->h, cl->ke > 0.0 ? 1.0 / cl->ke : 0.0), rho = INFINITY;
+        for (int e = 0; e < cl->n; e++) { /* the middle of the three semi-axes */
+            vec3 a = cl->r[e];
+            rho = fmin(rho, fmax(fmin(a.x, a.y), fmin(fmax(a.x, a.y), a.z)));
+        }
+        double texel = 2.0 * cu_sun_radius(cl) / smallest;
+        if (texel > skin / 8.0 && texel < rho / 8.0) {
+            cu_gpu_log(&r->ctx, CU_LOG_DEBUG, "light.sun_planar = auto: on (cloud %d's map texel %.1f m, wider than an "
+                       "eighth of its lit skin, %.1f m, finer than an eighth of its lobes, %.1f m)", i, texel,
+                       skin / 8.0, rho / 8.0);
+            return 1;
+        }
     }
-    cu_gpu_log(&r->ctx, CU_LOG_DEBUG, "light.sun_planar = auto: %s (the coarsest map texel %.2f of an eighth of its "
-               "cloud's lit skin)", worst > 1.0 ? "on" : "off", worst);
-    return worst > 1.0;
+    cu_gpu_log(&r->ctx, CU_LOG_DEBUG, "light.sun_planar = auto: off (no cloud's map texel is both wider than an eighth "
+               "of its lit skin and finer than an eighth of its lobes)");
+    return 0;
 }
 
 /* far = 1: the far level of detail of a field's clouds, small on screen: one segment fewer (at least 2) and two noise

@@ -8,7 +8,8 @@
 # toward the sun, 21 % and 69 % with the sun behind the eye (the nearest texel's error partly cancels there). Read
 # below each texel's entry it must be within 10 % (measured -3 % and -4 %), and off it must still miss by more than a
 # quarter (so this scene tests the read). Then auto: off for the default cumulus alone (its texels are 5.5 m against
-# an eighth of its 62 m skin), on for the layer, each the same image as the explicit setting. And on a thick cloud
+# an eighth of its 62 m skin) and for a field of cumuli (16-texel maps, texels too coarse for a plane across 200 m
+# lobes), on for the layer, each the same image as the explicit setting. And on a thick cloud
 # from below (sweep_below_hg) at 64 texels, the read brings single scattering closer to the same renderer's with 1024
 # texels (where the texels no longer matter). From the repository root.
 . tests/lib.sh
@@ -50,7 +51,7 @@ for az in 180 0; do
   done
 done
 # auto: what it picks (the debug log) and that the picture is the explicit setting's
-for c in "scenes/cumulus.scene off" "$T/layer180.scene on"; do
+for c in "scenes/cumulus.scene off" "scenes/field_noon.scene off" "$T/layer180.scene on"; do
   set -- $c
   if $C render "$1" -o "$T/auto.pfm" --size 16x12 -v >/dev/null 2>"$T/log" &&
      $C render "$1" -o "$T/explicit.pfm" --size 16x12 --set light.sun_planar=$2 >/dev/null 2>&1 &&

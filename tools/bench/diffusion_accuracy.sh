@@ -34,9 +34,12 @@ render() { # SCENE OUT GRID
 echo "Slabs: diffusion's mean over the path tracer's ($SPP spp)"
 echo "| slab | camera | sun | path tracer |$(for g in $GRIDS; do printf ' %s cells |' "$g"; done)"
 echo "| --- | --- | ---: | ---: |$(for g in $GRIDS; do printf ' ---: |'; done)"
-# density, boundary (m), the camera's height and its z (the sun is at azimuth 180, on the -z side), sun elevation
+# density, boundary (m), the camera's height and its z (the sun is at azimuth 180, on the +z side: a camera at -z
+# looks toward it), sun elevation. The last four: the eye 10 or 20 degrees above the top (520 / 1030 m up, 2950 /
+# 2820 m out), toward the sun and with it behind, where a lit face's limb meets the eye.
 for c in "400 62 1500 -600 60" "400 62 -1500 -600 60" "400 62 1500 -600 20" "400 62 1500 600 20" \
-         "400 62 -1500 -600 20" "800 62 -1500 -600 60" "1600 62 -1500 -600 60" "1600 5 -1500 -600 60"; do
+         "400 62 -1500 -600 20" "800 62 -1500 -600 60" "1600 62 -1500 -600 60" "1600 5 -1500 -600 60" \
+         "400 62 520 -2950 20" "400 62 520 2950 20" "400 62 1030 2820 20" "400 62 520 2950 45"; do
   set -- $c
   scene "$1" "$2" "3000 100 3000" "8 8" "0 $3 $4" 10 "$5" 180 > "$T/slab.scene"
   $PT "$T/slab.scene" -o "$T/pt.pfm" --spp "$SPP" -q >/dev/null 2>&1
