@@ -7,7 +7,7 @@
 # tracer. There the renderer must (a) reproduce that closed form within 12 % (it checks the grid, the split and the
 # source integration; measured +9 %, of which Wilson's limiter, which the closed form lacks, is 6) and (b) come closer
 # to the path tracer than the octave model (measured -16 % against the octaves' -30 %). A thick one with the sweep's
-# fuzzy 62 m boundary (optical depth 18): within 10 % of the path tracer (measured -7 %, its own plane-parallel
+# fuzzy 62 m boundary (optical depth 18): within 10 % of the path tracer (measured -6 %, its own plane-parallel
 # closed form -10 %; the octave model misses 74 %).
 # A sphere lit from three sides: within 8 % of the path tracer; a dense layer from below on a fine grid: within 15 %
 # (below).
