@@ -6,10 +6,15 @@
 # luminance of rows 28-35 in columns of 4 from the lit limb, each over the path tracer's. `high` with ms.mode =
 # diffusion at each of GRIDS (ms.grid). Accuracy, not speed: the numbers do not depend on the machine's load.
 # Usage: tools/bench/diffusion_accuracy.sh [GRIDS] [SPP] [SPHERE_BOUNDARY]   (defaults "32", 2048, 62)
+# Environment: G, the phase function's asymmetry (default 0.853; 0: isotropic, nothing for delta-M to truncate), and
+# MS=1: the slabs' multiple scattering alone, the path tracer's all orders less its first (--max-depth 1) over
+# diffusion's less its single scattering (ms.mode = none).
 set -eu
 GRIDS=${1:-32}
 SPP=${2:-2048}
 BOUNDARY=${3:-62}
+G=${G:-0.853}
+MS=${MS:-0}
 C=${CUMULO:-build/cumulo}
 PT=${CUMULO_PT:-build/cumulo-pt}
 T=${TMPDIR:-/tmp}/cumulo-diffusion-accuracy.$$
@@ -20,7 +25,7 @@ scene() {
   printf '[output]\nsize = %s\n[camera]\nposition = %s\nlook_at = 0 0 0\nfov = %s\n' "$4" "$5" "$6"
   printf '[sun]\nelevation = %s\nazimuth = %s\nirradiance = 100 100 100\n' "$7" "$8"
   printf '[sky]\nmodel = constant\ncolor = 0 0 0\n'
-  printf '[cloud]\ndensity = %s\ndroplet_radius = 6\nboundary = %s\nphase = hg\ng = 0.853\n' "$1" "$2"
+  printf '[cloud]\ndensity = %s\ndroplet_radius = 6\nboundary = %s\nphase = hg\ng = %s\n' "$1" "$2" "$G"
   printf '[ellipsoid]\ncenter = 0 0 0\nradii = %s\n[quality]\nnoise = off\n' "$3"
 }
 # luminance of a W x W PFM's pixels: "row column value" lines (rows as stored)
@@ -28,10 +33,12 @@ pixels() {
   tail -c $((12 * $2 * $2)) "$1" | od -An -f -w12 -v |
     awk -v w="$2" '{ print int((NR - 1) / w), (NR - 1) % w, 0.2126 * $1 + 0.7152 * $2 + 0.0722 * $3 }'
 }
-render() { # SCENE OUT GRID
-  $C render "$1" -o "$2" --set quality.preset=high --set ms.mode=diffusion --set ms.grid="$3" >/dev/null 2>&1
+render() { # SCENE OUT GRID [MODE]
+  $C render "$1" -o "$2" --set quality.preset=high --set ms.mode="${4:-diffusion}" --set ms.grid="$3" >/dev/null 2>&1
 }
-echo "Slabs: diffusion's mean over the path tracer's ($SPP spp)"
+mean8() { pixels "$1" 8 | awk '{ s += $3 } END { print s / NR }'; }
+alone=; [ "$MS" = 1 ] && alone=", multiple scattering alone"
+echo "Slabs (HG g = $G): diffusion's mean over the path tracer's ($SPP spp)$alone"
 echo "| slab | camera | sun | path tracer |$(for g in $GRIDS; do printf ' %s cells |' "$g"; done)"
 echo "| --- | --- | ---: | ---: |$(for g in $GRIDS; do printf ' ---: |'; done)"
 # density, boundary (m), the camera's height and its z (the sun is at azimuth 180, on the +z side: a camera at -z
@@ -43,11 +50,18 @@ for c in "400 62 1500 -600 60" "400 62 -1500 -600 60" "400 62 1500 -600 20" "400
   set -- $c
   scene "$1" "$2" "3000 100 3000" "8 8" "0 $3 $4" 10 "$5" 180 > "$T/slab.scene"
   $PT "$T/slab.scene" -o "$T/pt.pfm" --spp "$SPP" -q >/dev/null 2>&1
-  pt=$(pixels "$T/pt.pfm" 8 | awk '{ s += $3 } END { print s / NR }')
+  pt=$(mean8 "$T/pt.pfm") pt1=0 ss=0
+  if [ "$MS" = 1 ]; then
+    $PT "$T/slab.scene" -o "$T/pt1.pfm" --spp "$SPP" --max-depth 1 -q >/dev/null 2>&1
+    pt1=$(mean8 "$T/pt1.pfm")
+    render "$T/slab.scene" "$T/s.pfm" 32 none
+    ss=$(mean8 "$T/s.pfm")
+  fi
   row="| density $1, boundary $2 m | 0 $3 $4 | $5° | $pt |"
   for g in $GRIDS; do
     render "$T/slab.scene" "$T/d.pfm" "$g"
-    row="$row $(pixels "$T/d.pfm" 8 | awk -v p="$pt" '{ s += $3 } END { printf "%.3f", s / NR / p }') |"
+    row="$row $(mean8 "$T/d.pfm" |
+      awk -v p="$pt" -v p1="$pt1" -v s="$ss" '{ printf "%.3f", ($1 - s) / (p - p1) }') |"
   done
   echo "$row"
 done
