@@ -236,13 +236,6 @@ float core_entry(vec3 ro, vec3 dir, int k0, int k1)
 }
 #endif
 
-// The march ends where the transmittance to the eye falls below e^-TAU_CUT (6e-6) for the light that reaches
-// farthest (the delta-M medium's, or diffusion's scaled one: msd_reach): nothing behind can add more than that
-// fraction of its source, and a ray through a thick cloud spends most of its samples behind it (Kol's segments grow
-// away from the entry; the exit ramp and the intervals behind come last). Not in the energy pass, which wants the
-// whole column.
-#define TAU_CUT 12.0
-
 #if METHOD_UNIFORM && !ENERGY_PASS
 #include "march_uniform.glsl"
 #endif

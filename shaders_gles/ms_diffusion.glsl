@@ -12,6 +12,14 @@
 // depth (msd_interval). msd_ph = min((1 - f) HG(g', mu), ph0): away from the forward lobe the scaled medium's single
 // scattering uses the exact phase function (Nakajima & Tanaka's TMS); inside it, the lobe's excess stays exact, so
 // it is counted once. Without MS_MODE 4, nothing.
+
+// The march ends where the transmittance to the eye falls below e^-TAU_CUT (6e-6) for the light that reaches
+// farthest (the delta-M medium's, or diffusion's scaled one: msd_reach): nothing behind can add more than that
+// fraction of its source, and a ray through a thick cloud spends most of its samples behind it (Kol's segments grow
+// away from the entry; the exit ramp and the intervals behind come last). Not in the energy pass, which wants the
+// whole column.
+#define TAU_CUT 12.0
+
 #if MS_MODE == 4
 uniform highp sampler3D u_msd; // RGBA16F: phi, F (pass_msd.c)
 uniform vec3 u_msd_lo;         // cloud-local corner of the grid

@@ -196,7 +196,7 @@ static int sun_planar_wanted(const cu_renderer *r)
  * octaves of five (at least 1; the others stand in as their mean, density.glsl). On a field seen from the ground
  * where every cloud takes it, the octaves change the picture by 0.7 % (relative RMSE), the segment by 2.1 %; half
  * the segments would be 6 % (tests/gpu/test_field.c measures the whole). */
-static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error *err)
+static int build_defines(const cu_renderer *r, shader_defs *d, int far, int sun_planar, cu_error *err)
 {
     const cu_scene *s = &r->scene;
     const cu_gpu_scene *c = &r->ctx;
@@ -219,7 +219,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, cu_error
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
              r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
              s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps, s->noise && s->noise_baked,
-             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar_wanted(r));
+             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar);
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");
@@ -235,7 +235,8 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
     shader_defs d;
     int most_d, most_g;
     cu_frame_budget_most(&r->fb, &r->scene, &most_d, &most_g);
-    if (build_defines(r, &d, 0, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
+    int sun_planar = sun_planar_wanted(r); /* once: it logs its choice */
+    if (build_defines(r, &d, 0, sun_planar, err) || cu_pass_slab_create(&r->pass_slab, ctx, d.fs, err))
         return 1;
     if (cu_pass_sun_create(&r->pass_sun, ctx, d.hull, d.fs, err) ||
         cu_pass_cloud_create(&r->pass_cloud, ctx, d.hull, d.fs, err) ||
@@ -254,7 +255,7 @@ static int create_passes(cu_renderer *r, const cu_phase_table *phase, cu_error *
                                      "alone)");
     if (r->clouds.n > 1 && r->scene.lod_pixels > 0) {
         shader_defs far;
-        if (build_defines(r, &far, 1, err) || cu_pass_cloud_create(&r->pass_cloud_far, ctx, far.hull, far.fs, err))
+        if (build_defines(r, &far, 1, sun_planar, err) || cu_pass_cloud_create(&r->pass_cloud_far, ctx, far.hull, far.fs, err))
             return 1;
     }
     ctx->sun_ext = r->pass_shadow.zero_tex;

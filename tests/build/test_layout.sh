@@ -67,4 +67,7 @@ done
 # No source file over 500 lines outside tests and generated code.
 big=$(find include src app platform tools -name '*.[ch]' -exec wc -l {} + | awk '$2 != "total" && $1 > 500 {print $2 "(" $1 ")"}')
 [ -z "$big" ] && t_ok "no source file over 500 lines" || t_fail "no source file over 500 lines" "$(echo $big)"
+big=$(find shaders_gles -name '*.glsl' -o -name '*.frag' -o -name '*.vert' | xargs wc -l |
+     awk '$2 != "total" && $1 > 500 {print $2 "(" $1 ")"}')
+[ -z "$big" ] && t_ok "no shader over 500 lines" || t_fail "no shader over 500 lines" "$(echo $big)"
 t_summary
