@@ -190,7 +190,7 @@ vec3 source(vec3 p, float ke, vec3 ph0)
 {
     float ts = (sun_optical_depth(p, ke) + ext_tau(p)) * DM_SCALE;
     msd_source(p, ts);
-    return source_from(ts, ph0);
+    return source_from(ts, ph0) + msd_lobe; // ms.lobe's light: the exact single scattering's attenuation
 }
 
 #if BOUNDARY_KNOTS

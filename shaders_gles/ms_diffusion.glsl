@@ -28,11 +28,28 @@ uniform vec3 u_msd_dm;         // 1 - f_d (the scaled over the chopped extinctio
 vec3 msd_dir;                  // the ray's direction
 vec3 msd_ph;                   // the scaled medium's phase per unit extinction toward the eye, this ray
 vec3 msd_S;                    // the scaled medium's source at the last sample (msd_source)
+#if MSD_LOBE
+// ms.lobe (src/core/ms_lobe.c): light the forward lobe alone carries to the eye, n >= 1 lobe scatterings on the way
+// in and one toward it, which the scaled medium counts as still on the sun's line. Rows 2 .. 2 + LOBE_ROWS - 1 of
+// the phase texture over the scattering angle and the chopped optical depth toward the sun ts (rows at
+// ts = LOBE_TS_MAX (r / (LOBE_ROWS - 1))^2). It is attenuated toward the eye as the exact single scattering is, by
+// the chopped optical depth: one more lobe scattering on the way out is a longer lobe-only path, counted where it
+// happens.
+#define LOBE_ROWS 48
+#define LOBE_TS_MAX 40.0
+int msd_lobe_col;              // the ray's scattering angle's column of the table
+vec3 msd_lobe;                 // the lobe's light at the last sample (msd_source)
+#else
+const vec3 msd_lobe = vec3(0.0);
+#endif
 
 // Per ray: its direction and the source phase split; returns what stays with the exact single scattering.
 vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
 {
     msd_dir = dir;
+#if MSD_LOBE
+    msd_lobe_col = int(acos(clamp(mu, -1.0, 1.0)) / PI * float(u_phase_n - 1) + 0.5);
+#endif
     msd_ph = min(vec3(u_msd_dm.z * hg(u_msd_dm.y, mu)), ph0);
     return ph0 - msd_ph;
 }
@@ -44,6 +61,12 @@ void msd_source(vec3 p, float ts)
     vec4 v = texture(u_msd, (p - u_msd_lo) / u_msd_size);
     msd_S = msd_ph * exp(-u_msd_dm.x * ts) +
             vec3(u_msd_dm.z / (4.0 * PI) * max(v.x - 3.0 * u_msd_dm.y * dot(v.yzw, msd_dir), 0.0) * ext_diffuse(p));
+#if MSD_LOBE
+    float r = sqrt(min(ts / LOBE_TS_MAX, 1.0)) * float(LOBE_ROWS - 1);
+    int i = min(int(r), LOBE_ROWS - 2);
+    msd_lobe = mix(texelFetch(u_phase, ivec2(msd_lobe_col, 2 + i), 0).rgb,
+                   texelFetch(u_phase, ivec2(msd_lobe_col, 3 + i), 0).rgb, r - float(i));
+#endif
 }
 
 // What a segment of chopped optical depth dt at chopped depth taup from the eye sends to the eye, from the scaled
@@ -62,6 +85,7 @@ float msd_reach(float taup)
     return u_msd_dm.x * taup;
 }
 #else
+const vec3 msd_lobe = vec3(0.0);
 vec3 msd_begin(vec3 dir, float mu, vec3 ph0)
 {
     return ph0;

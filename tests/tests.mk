@@ -33,6 +33,8 @@ $(eval $(call test_program,test_solar,tests/core/test_solar.c $(CORE),,$(LIB_LIB
 $(eval $(call test_program,test_layer,tests/core/test_layer.c $(CORE),,$(LIB_LIBS)))
 # ms.mode = diffusion's solver against closed forms (slab energy and transmission, symmetry, warm start, extremes).
 $(eval $(call test_program,test_ms_diffusion,tests/core/test_ms_diffusion.c $(CORE),,$(LIB_LIBS)))
+# ms.lobe's table of lobe-only light against closed forms (HG's self-convolution, the scaled beam's energy), extremes.
+$(eval $(call test_program,test_ms_lobe,tests/core/test_ms_lobe.c $(CORE),,$(LIB_LIBS)))
 # quality.noise_baked's CPU twin against the fractal noise it stands in for.
 $(eval $(call test_program,test_noise_baked,tests/core/test_noise_baked.c $(CORE),,$(LIB_LIBS)))
 # The frame budget's controller (quality.target_fps) driven by frame costs of the test's own.
@@ -49,7 +51,7 @@ $(eval $(call test_program,test_precision,tests/core/test_precision.c,-Wno-pedan
 $(foreach t,render sunmap ms fallback field sky temporal composite impostor sun_bands ground_drift msd_frames \
   edge_refine,\
   $(eval $(call test_program,test_$(t),tests/gpu/test_$(t).c $(HEADLESS) $(LIB),,$(HEADLESS_LIBS))))
-CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh \
+CHECK_TESTS += tests/gpu/test_ms_slab.sh tests/gpu/test_octaves_thin.sh tests/gpu/test_ms_diffusion.sh tests/gpu/test_ms_lobe.sh \
   tests/gpu/test_sun_planar.sh
 # Where on screen a cloud can be (camera.c), against points of its bounds from random views: no GL.
 $(eval $(call test_program,test_camera_rect,tests/gpu/test_camera_rect.c $(LIB),,$(LIB_LIBS)))

@@ -142,6 +142,7 @@ struct cu_scene {
     int ms_iterations;        /* collector search: most steps (Bouthors: most converge within 10) */
     double ms_blur_m;         /* slab model: width of the box the slab maps are averaged over (Kol: a fixed LOD) */
     int ms_grid;              /* diffusion: cells along the longest side of a cloud's grid (src/core/ms_diffusion.h) */
+    int ms_lobe;              /* diffusion: the forward lobe's own scatterings toward the eye (src/core/ms_lobe.h), 0/1 */
     int ms_frame_work;        /* diffusion: thousands of cell updates a frame for re-solves (src/gpu/pass_msd.h) */
     int ms_closure;           /* slab model: scale multiple scattering so a cloud sends out no more than it
                                  intercepts (src/gpu/pass_energy.c), 0/1 */

@@ -244,6 +244,10 @@ const cu_scene_key cu_scene_keys[CU_SCENE_KEY_COUNT] = {
         S(ms_iterations)),
     INT("ms", "grid", 1, "32", 8, 96, 0, "", "mode = diffusion: cells along the longest side of a cloud's grid",
         S(ms_grid)),
+    BOOL("ms", "lobe", "on",
+         "mode = diffusion: light the phase function's forward lobe carries to the eye over several scatterings (which "
+         "delta-M counts as unscattered): lit faces seen toward the sun",
+         S(ms_lobe)),
     INT("ms", "frame_work", 1, "300", 1, 1000000, 0, "",
         "mode = diffusion: thousands of cell updates a frame for sampling and solving grids again (the sun turned, a "
         "cloud changed or came into view); a scene's first frame solves every grid whole",

@@ -40,7 +40,7 @@ typedef struct cu_scene_section {
 } cu_scene_section;
 
 /* Counts are part of the declarations so that other files can size arrays by them; scene_keys.c checks them. */
-#define CU_SCENE_KEY_COUNT 77
+#define CU_SCENE_KEY_COUNT 78
 #define CU_ELLIPSOID_KEY_COUNT 2
 #define CU_CLOUD_KEY_COUNT 7
 #define CU_LAYER_KEY_COUNT 8

@@ -211,7 +211,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, int sun_
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n#define EXT_SHADOW %d\n"
              "#define GROUND_SHADOW %d\n#define METHOD_UNIFORM %d\n#define UNIFORM_STEPS %d\n"
              "#define UNIFORM_SUN_STEPS %d\n#define NOISE_BAKED %d\n#define BOUNDARY_KNOTS %d\n#define RAMP_KNOTS %d\n"
-             "#define TEMPORAL %d\n#define SUN_PLANAR %d\n",
+             "#define TEMPORAL %d\n#define SUN_PLANAR %d\n#define MSD_LOBE %d\n",
              c->num_ell, far && s->segments > 2 ? s->segments - 1 : s->segments,
              s->max_intervals, s->noise ? 1 : 0, far ? (s->noise_octaves > 2 ? 2 : 1) : s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
@@ -219,7 +219,8 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, int sun_
              s->sun_filter, s->sun_samples, s->integration, c->shadow, s->osm_slices, s->fom_coefficients,
              r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
              s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps, s->noise && s->noise_baked,
-             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar);
+             s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar,
+             c->ms_mode == CU_MS_DIFFUSION && s->ms_lobe);
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");
@@ -335,7 +336,9 @@ static int set_scene(cu_renderer *r, const cu_scene *s, cu_error *err)
         sl->cloud.ke = sl->ke_rest;
     }
     cu_cloud_set_at_time(&r->clouds, r->time); /* the fades follow the optical depths just set */
-    int rc = cu_upload_phase(ctx, &t, err) || cu_pass_slab_load(&r->pass_slab, ctx, r->data_dir, &ctx->ms_mode, err) ||
+    int lobe = r->scene.ms_mode == CU_MS_DIFFUSION && r->scene.ms_lobe;
+    int rc = cu_upload_phase(ctx, &t, lobe, err) ||
+             cu_pass_slab_load(&r->pass_slab, ctx, r->data_dir, &ctx->ms_mode, err) ||
              create_passes(r, &t, err) || cu_upload_hulls(ctx, err);
     cu_phase_table_free(&t);
     if (rc)

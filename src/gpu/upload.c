@@ -1,6 +1,7 @@
 /* src/gpu/upload.c: scene data into GL objects (see upload.h). */
 #include "upload.h"
 #include "error.h"
+#include "ms_lobe.h"
 #include <stdlib.h>
 
 int cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves, cu_error *err)
@@ -38,25 +39,34 @@ int cu_upload_noise(cu_gpu_scene *ctx, const cu_noise *n, int baked_octaves, cu_
     return 0;
 }
 
-int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, cu_error *err)
+int cu_upload_phase(cu_gpu_scene *ctx, const cu_phase_table *t, int lobe, cu_error *err)
 {
     const cu_gl *gl = ctx->gl;
-    float *rgba = calloc(4 * 2 * (size_t)t->n, sizeof(float));
-    if (!rgba)
+    int rows = 2 + (lobe ? CU_LOBE_ROWS : 0);
+    float *rgba = calloc(4 * (size_t)rows * (size_t)t->n, sizeof(float));
+    float *lt = lobe ? malloc(sizeof(float) * 3 * CU_LOBE_ROWS * (size_t)t->n) : NULL;
+    /* ms.lobe in diffusion's medium (ms_diffusion.glsl's u_msd_dm): 1 - f_d of what the chop left, and g' */
+    if (!rgba || (lobe && (!lt || cu_ms_lobe_table(t, (1.0 - ctx->msd_f) / (1.0 - ctx->peak_f[1]), ctx->msd_g, lt)))) {
+        free(rgba);
+        free(lt);
         return cu_fail(err, "phase: out of memory");
+    }
     for (int i = 0; i < t->n; i++)
         for (int c = 0; c < 3; c++) {
             rgba[4 * i + c] = t->rgb[3 * i + c];
             rgba[4 * (t->n + i) + c] = t->peak ? t->peak[3 * i + c] : 0.0f;
+            for (int r = 0; lt && r < CU_LOBE_ROWS; r++)
+                rgba[4 * ((2 + r) * t->n + i) + c] = lt[3 * (r * t->n + i) + c];
         }
     /* RGBA32F fetched with texelFetch and interpolated in the shader: exact values, no fp16 range limit (the Mie
      * peak reaches hundreds of sr^-1), and no need for OES_texture_float_linear. */
     gl->GenTextures(1, &ctx->phase_tex);
     gl->BindTexture(GL_TEXTURE_2D, ctx->phase_tex);
-    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t->n, 2, 0, GL_RGBA, GL_FLOAT, rgba);
+    gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t->n, rows, 0, GL_RGBA, GL_FLOAT, rgba);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     free(rgba);
+    free(lt);
     return 0;
 }
 

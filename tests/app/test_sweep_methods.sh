@@ -25,10 +25,10 @@ $S --methods --scenes cumulus,sweep_cumulus_hg --refs-only --size 8x6 --spp 1 --
 grep -q "high = scenes/cumulus.scene$" "$T/own.txt" && t_ok "--scenes: high is the first view's settings" ||
   t_fail "--scenes: high is the first view's settings" "$(grep 'high = ' "$T/own.txt")"
 
-# One row a configuration: 36 of Kol's method, 19 of the uniform march (methods.c's tables).
+# One row a configuration: 47 of Kol's method, 19 of the uniform march (methods.c's tables).
 kol=$(grep -c '^sweep_cumulus_hg,kol,' "$T/methods.csv"); uni=$(grep -c '^sweep_cumulus_hg,uniform,' "$T/methods.csv")
-[ "$kol" -eq 36 ] && [ "$uni" -eq 19 ] && t_ok "55 configurations in the CSV: 36 Kol, 19 uniform" ||
-  t_fail "55 configurations" "$kol Kol, $uni uniform"
+[ "$kol" -eq 47 ] && [ "$uni" -eq 19 ] && t_ok "66 configurations in the CSV: 47 Kol, 19 uniform" ||
+  t_fail "66 configurations" "$kol Kol, $uni uniform"
 
 # methods.dat: view, family (0 Kol, 1 uniform, 2 and 3 their controls), time / high, cloud error, contrast / the
 # path tracer's, SSIM, then the quoted label and view. Every number finite and in range; high's time ratio 1.
@@ -36,7 +36,7 @@ D=$T/methods.dat
 bad=$(awk '!/^#/ { for (i = 1; i <= 6; i++) if ($i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) { print NR ": " $0; next }
                    if ($2 > 3 || $3 <= 0 || $4 < 0 || $6 < -1 || $6 > 1) print NR ": " $0 }' "$D")
 n=$(grep -vc '^#' "$D")
-[ -z "$bad" ] && [ "$n" -eq 55 ] && t_ok "every metric finite and in range (55 rows)" ||
+[ -z "$bad" ] && [ "$n" -eq 66 ] && t_ok "every metric finite and in range (66 rows)" ||
   t_fail "every metric finite and in range" "$n rows; $bad"
 # Where the light goes: five numbers a row in the CSV (the light over the path tracer's in each fifth of the cloud's
 # pixels by brightness), each finite and positive, and the same five in the view's table.

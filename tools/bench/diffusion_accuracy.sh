@@ -8,13 +8,14 @@
 # Usage: tools/bench/diffusion_accuracy.sh [GRIDS] [SPP] [SPHERE_BOUNDARY]   (defaults "32", 2048, 62)
 # Environment: G, the phase function's asymmetry (default 0.853; 0: isotropic, nothing for delta-M to truncate), and
 # MS=1: the slabs' multiple scattering alone, the path tracer's all orders less its first (--max-depth 1) over
-# diffusion's less its single scattering (ms.mode = none).
+# diffusion's less its single scattering (ms.mode = none); LOBE=off: without the forward lobe's own light (ms.lobe).
 set -eu
 GRIDS=${1:-32}
 SPP=${2:-2048}
 BOUNDARY=${3:-62}
 G=${G:-0.853}
 MS=${MS:-0}
+LOBE=${LOBE:-on}
 C=${CUMULO:-build/cumulo}
 PT=${CUMULO_PT:-build/cumulo-pt}
 T=${TMPDIR:-/tmp}/cumulo-diffusion-accuracy.$$
@@ -34,7 +35,8 @@ pixels() {
     awk -v w="$2" '{ print int((NR - 1) / w), (NR - 1) % w, 0.2126 * $1 + 0.7152 * $2 + 0.0722 * $3 }'
 }
 render() { # SCENE OUT GRID [MODE]
-  $C render "$1" -o "$2" --set quality.preset=high --set ms.mode="${4:-diffusion}" --set ms.grid="$3" >/dev/null 2>&1
+  $C render "$1" -o "$2" --set quality.preset=high --set ms.mode="${4:-diffusion}" --set ms.grid="$3" \
+    --set ms.lobe="$LOBE" >/dev/null 2>&1
 }
 mean8() { pixels "$1" 8 | awk '{ s += $3 } END { print s / NR }'; }
 alone=; [ "$MS" = 1 ] && alone=", multiple scattering alone"

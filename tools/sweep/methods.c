@@ -47,6 +47,27 @@ static const struct {
      "low, octaves, 1/4 resolution, 2 segments, hull 6", 0},
     {CU_PRESET_LOW, "ms.mode=octaves;quality.cloud_downsample=4;quality.segments=1;quality.hull_tessellation=4",
      "low, octaves, 1/4 resolution, 1 segment, hull 4", 0},
+    /* the cheap end with the noisy skin in coarser steps: with one or two segments the chords that never reach the core
+     * (quality.boundary_step, up to 32 steps each) take most of a pixel's samples; 30 m steps, or Kol's segments */
+    {CU_PRESET_LOW, "quality.segments=2;quality.hull_tessellation=6;quality.boundary_step=30",
+     "low, 2 segments, hull 6, boundary step 30 m", 0},
+    {CU_PRESET_LOW, "quality.segments=1;quality.hull_tessellation=4", "low, 1 segment, hull 4", 0},
+    {CU_PRESET_LOW, "quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=30",
+     "low, 1 segment, hull 4, boundary step 30 m", 0},
+    {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=30",
+     "low, 1/4 resolution, 1 segment, hull 4, boundary step 30 m", 0},
+    {CU_PRESET_LOW, "quality.cloud_downsample=4;quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=0",
+     "low, 1/4 resolution, 1 segment, hull 4, no boundary knots", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200;quality.segments=2;quality.hull_tessellation=6;quality.boundary_step=30",
+     "low, octaves, 2 segments, hull 6, boundary step 30 m", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200;quality.segments=1;quality.hull_tessellation=4",
+     "low, octaves, 1 segment, hull 4", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200;quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=30",
+     "low, octaves, 1 segment, hull 4, boundary step 30 m", 0},
+    {CU_PRESET_LOW, "quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=30;quality.edge_refine=0.6",
+     "low, 1 segment, hull 4, boundary step 30 m, edges refined 0.6", 0},
+    {CU_PRESET_LOW, "ms.mode=octaves;ms.blur=200;quality.segments=1;quality.hull_tessellation=4;quality.boundary_step=30;"
+     "quality.edge_refine=0.6", "low, octaves, 1 segment, hull 4, boundary step 30 m, edges refined 0.6", 0},
     /* half resolution with the pixels whose four texels differ marched again at full resolution (quality.edge_refine):
      * the thin bright rim that half resolution smears */
     {CU_PRESET_LOW, "quality.edge_refine=0.3", "low, edges refined 0.3", 0},
@@ -75,6 +96,8 @@ static const struct {
     {CU_PRESET_HIGH, "quality.noise_baked=off;quality.boundary_step=0",
      "high as before (exact noise, no boundary knots)", 1},
     {CU_PRESET_MEDIUM, "quality.noise_baked=off;quality.boundary_step=0", "medium as before", 1},
+    /* diffusion without the forward lobe's own light (ms.lobe = off): what it changes */
+    {CU_PRESET_MEDIUM, "ms.lobe=off", "medium without the lobe's light", 1},
     /* the entry ramp marched in 8 m steps (quality.ramp_step): single scattering where the path tracer puts it */
     {CU_PRESET_HIGH, "quality.ramp_step=8", "high, entry ramp 8 m", 0},
     {CU_PRESET_MEDIUM, "quality.ramp_step=8", "medium, entry ramp 8 m", 0},
