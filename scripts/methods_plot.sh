@@ -30,7 +30,7 @@ cols=2; rows=$(( (n + 1) / 2 ))
     echo "set title '$name'"
     echo "plot '$dat' using (\$1==$v && \$2==0 ? \$3 : 1/0):4 with points pt 7 ps 1.2 lc rgb '#cc3311' title \"Kol's method\", \\"
     echo "     '' using (\$1==$v && \$2==1 ? \$3 : 1/0):4 with points pt 6 ps 1.2 lc rgb '#4477aa' title 'uniform march', \\"
-    echo "     '' using (\$1==$v && \$2==2 ? \$3 : 1/0):4 with points pt 7 ps 0.8 lc rgb '#aaaaaa' title 'Kol, defaults before 2026-12-02', \\"
+    echo "     '' using (\$1==$v && \$2==2 ? \$3 : 1/0):4 with points pt 7 ps 0.8 lc rgb '#aaaaaa' title 'Kol, controls (defaults replaced, no lobe)', \\"
     echo "     '' using (\$1==$v && \$2==3 ? \$3 : 1/0):4 with points pt 6 ps 0.8 lc rgb '#aaaaaa' title 'uniform, exact noise'"
   done
   echo "unset multiplot"
