@@ -34,9 +34,7 @@ vec3 msd_S;                    // the scaled medium's source at the last sample 
 // the phase texture over the scattering angle and the chopped optical depth toward the sun ts (rows at
 // ts = LOBE_TS_MAX (r / (LOBE_ROWS - 1))^2). It is attenuated toward the eye as the exact single scattering is, by
 // the chopped optical depth: one more lobe scattering on the way out is a longer lobe-only path, counted where it
-// happens.
-#define LOBE_ROWS 48
-#define LOBE_TS_MAX 40.0
+// happens. LOBE_ROWS and LOBE_TS_MAX come from the renderer's defines (CU_LOBE_ROWS, CU_LOBE_TS_MAX of ms_lobe.h).
 int msd_lobe_col;              // the ray's scattering angle's column of the table
 vec3 msd_lobe;                 // the lobe's light at the last sample (msd_source)
 #else

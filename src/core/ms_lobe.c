@@ -4,11 +4,12 @@
  * face is seen near the sun's direction (toward the sun, a lit rim from below) that light is what the eye sees, and
  * without it those faces came out 15-30 % dark (README "Where the light goes"). The lobe's own scatterings are
  * counted here in closed form, in the small-angle picture (every lobe-only photon at a point has crossed the sun's
- * optical depth ts there): n lobe scatterings on the way are Poisson with mean c_0 ts, their directions the lobe
+ * optical depth ts there): n lobe scatterings on the way are Poisson with mean f_d ts (delta-M's rate, the rate the
+ * scaled beam keeps its photons at), their directions the lobe
  * convolved n times with itself, whose Legendre coefficients are the lobe's to the power n; the last scattering,
  * toward the eye, is the lobe once more. Summed over n >= 1 per order l:
  *   sum_n e^-ts (c_0 ts)^n / n! c_0 (c_l / c_0)^(n+1) = c_l (e^-(1 - c_l) ts - e^-ts)
- * with c_l = 2 pi int lobe P_l dmu. n = 0 is the exact single scattering the shader already has. The shader
+ * with c_l = 2 pi int lobe P_l dmu scaled so that c_0 = f_d. n = 0 is the exact single scattering the shader already has. The shader
  * attenuates this light toward the eye by the chopped (not the scaled) optical depth: a lobe scattering on the way
  * out would make it a path with one lobe scattering more, which the table counts at that later point. */
 #include "ms_lobe.h"

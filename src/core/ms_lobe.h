@@ -13,8 +13,9 @@
  * angles (t->n columns, theta_i = i pi / (n - 1)) and CU_LOBE_ROWS depths: out[(r * t->n + i) * 3 + c].
  * The medium is delta-M's (ms_diffusion.glsl): of the chopped phase function p = P~ / (1 - f_chop), the part
  * q = min(one_minus_fd HG(gp), p) scatters as itself and the lobe p - q counts as unscattered. Lobe-only light after
- * n scatterings has the lobe's Legendre coefficients to the power n + 1, and a Poisson number of them at rate c_0
- * (the lobe's weight) along the sun's path: per order l, c_l e^-ts (e^(c_l ts) - 1) (see ms_lobe.c). Values are
+ * n scatterings has the lobe's Legendre coefficients to the power n + 1, and a Poisson number of them at delta-M's
+ * rate f_d = 1 - one_minus_fd along the sun's path (the coefficients scaled so that c_0 = f_d): per order l,
+ * c_l e^-ts (e^(c_l ts) - 1) (see ms_lobe.c). Values are
  * per unit true extinction: multiplied by 1 - f_chop, as the shader's sources are. Returns 0, or -1 out of memory. */
 int cu_ms_lobe_table(const cu_phase_table *t, double one_minus_fd, double gp, float *out);
 #endif

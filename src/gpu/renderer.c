@@ -4,6 +4,7 @@
 #include "camera.h"
 #include "error.h"
 #include "glstate.h"
+#include "ms_lobe.h"
 #include "scene_camera.h"
 #include "scene_sun.h"
 #include "upload.h"
@@ -211,7 +212,8 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, int sun_
              "#define SHADOW_METHOD %d\n#define OSM_SLICES %d\n#define FOM_COEFFS %d\n#define EXT_SHADOW %d\n"
              "#define GROUND_SHADOW %d\n#define METHOD_UNIFORM %d\n#define UNIFORM_STEPS %d\n"
              "#define UNIFORM_SUN_STEPS %d\n#define NOISE_BAKED %d\n#define BOUNDARY_KNOTS %d\n#define RAMP_KNOTS %d\n"
-             "#define TEMPORAL %d\n#define SUN_PLANAR %d\n#define MSD_LOBE %d\n",
+             "#define TEMPORAL %d\n#define SUN_PLANAR %d\n#define MSD_LOBE %d\n#define LOBE_ROWS %d\n"
+             "#define LOBE_TS_MAX %.1f\n",
              c->num_ell, far && s->segments > 2 ? s->segments - 1 : s->segments,
              s->max_intervals, s->noise ? 1 : 0, far ? (s->noise_octaves > 2 ? 2 : 1) : s->noise_octaves,
              s->profile == CU_PROFILE_KOL, c->ms_mode, c->ms_mode == CU_MS_OCTAVES ? s->ms_octaves : 1,
@@ -220,7 +222,7 @@ static int build_defines(const cu_renderer *r, shader_defs *d, int far, int sun_
              r->shadows && r->clouds.n > 1, r->shadows && s->sky_model != CU_SKY_CONSTANT,
              s->method == CU_METHOD_UNIFORM, s->uniform_steps, s->uniform_sun_steps, s->noise && s->noise_baked,
              s->noise && s->boundary_step > 0, s->noise && s->ramp_step > 0, most_g > 1, sun_planar,
-             c->ms_mode == CU_MS_DIFFUSION && s->ms_lobe);
+             c->ms_mode == CU_MS_DIFFUSION && s->ms_lobe, CU_LOBE_ROWS, CU_LOBE_TS_MAX);
     if (n < 0 || n >= (int)sizeof defs ||
         cu_pass_slab_defines(&r->pass_slab, c, defs + n, sizeof defs - (size_t)n))
         return cu_fail(err, "shader defines too long");
